@@ -1,0 +1,28 @@
+// JSON files in the app layer: reading with errors that name the file and the field.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace drape::app {
+
+/// Parses a JSON file. \throw drape::IoError (unreadable), drape::InvalidInput (bad JSON,
+/// with the file name and the parser's position).
+nlohmann::json read_json_file(const std::filesystem::path& path);
+
+/// Writes JSON (pretty, 2 spaces) atomically.
+void write_json_file(const std::filesystem::path& path, const nlohmann::json& j);
+
+/// A finite number at `key` of object `j`, or nullopt when absent; throws InvalidInput
+/// "<file>: field '<key>' must be a finite number, got <value>" otherwise.
+std::optional<double> optional_number(const nlohmann::json& j, const std::string& key,
+                                      const std::string& file);
+
+/// Throws InvalidInput if `j` has keys outside `allowed` (catches typos such as "hieght_m").
+void reject_unknown_keys(const nlohmann::json& j, const std::initializer_list<std::string>& allowed,
+                         const std::string& file);
+
+}  // namespace drape::app

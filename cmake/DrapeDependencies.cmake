@@ -1,0 +1,11 @@
+# Third-party dependencies, all from Debian 12 packages (see scripts/setup.sh).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(Threads REQUIRED)
+find_package(Ceres 2.1 REQUIRED)
+find_package(HDF5 REQUIRED COMPONENTS C)
+find_package(assimp REQUIRED)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(nlohmann_json 3.10 REQUIRED)
+if(DRAPE_BUILD_TESTS)
+  find_package(Catch2 2.13 REQUIRED)
+endif()
