@@ -1,0 +1,26 @@
+// JSON forms of the body types, shared by the CLI commands.
+#pragma once
+
+#include <drape/body/measurements.hpp>
+#include <drape/body/pose.hpp>
+#include <drape/body/semantic_shape.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace drape::app {
+
+/// P.json: any subset of "gender" and the semantic keys (kSemanticKeys).
+body::SemanticRequest semantic_request_from_json(const nlohmann::json& j, const std::string& file);
+nlohmann::json to_json(const body::SemanticShape& shape);
+/// The measurable keys (every semantic key but muscle) of a measurement.
+nlohmann::json to_json(const body::BodyMeasurements& m, body::Gender gender);
+
+/// POSE.json: {"preset": "a_pose"|"arms_down"|"walking"|"t_pose" (optional),
+///             "translation": [x, y, z] (optional, metres),
+///             "rotations": {"<joint name>": [x, y, z] axis-angle radians, ...} (optional)}
+body::Pose pose_from_json(const nlohmann::json& j, const std::string& file);
+nlohmann::json to_json(const body::Pose& pose);
+
+}  // namespace drape::app

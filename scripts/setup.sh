@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Drape builds with (only those missing; idempotent) and
+# builds it. Usage: scripts/setup.sh [BUILD_DIR] [extra cmake args...]
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$here/build}"
+shift || true
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev          # geometry currency
+  libceres-dev           # body fitting (brings SuiteSparse, glog, gflags)
+  libhdf5-dev            # body model files
+  libassimp-dev          # glTF / OBJ export and import
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # images (apps)
+  nlohmann-json3-dev     # JSON in the app layer
+  libcli11-dev           # command line
+  catch2                 # tests
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build "$build" -j"$(nproc)"

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The whole test suite: builds Drape (Release, warnings as errors) and runs every ctest
+# test; then builds the body and C API suites with AddressSanitizer + UBSan and runs them.
+# Reads ../shared (photos, anthropometry) when present; tests that need it skip otherwise.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+jobs="$(nproc)"
+"$here/scripts/setup.sh" "$here/build"
+(cd "$here/build" && ctest --output-on-failure -j"$jobs" --timeout 900)
+
+if [ "${DRAPE_SKIP_SANITIZERS:-0}" != 1 ]; then
+  echo "== AddressSanitizer + UndefinedBehaviorSanitizer: body and C API suites"
+  cmake -S "$here" -B "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDRAPE_SANITIZE=ON \
+    -DDRAPE_BUILD_APPS=OFF >/dev/null
+  cmake --build "$here/build-asan" -j"$jobs" --target drape_body_tests drape_capi_tests drape_capi_c_test
+  (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     ctest --output-on-failure -j"$jobs" --timeout 1800 -R "^(body|capi)")
+fi
