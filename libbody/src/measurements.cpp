@@ -2,6 +2,8 @@
 
 #include <drape/core/errors.hpp>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -75,14 +75,14 @@ TEST_CASE("shape_body matches every requested girth and height", "[body][shape]"
         INFO(s.brief_report());
         REQUIRE(s.termination == ShapeTermination::converged);
         const BodyMeasurements m = measure_body(model, body.vertices);
-        CHECK(m.height_m == Approx(shape[Semantic::height_m]).epsilon(1e-3));
-        CHECK(m.chest_girth_m == Approx(shape[Semantic::chest_girth_m]).epsilon(1e-3));
-        CHECK(m.waist_girth_m == Approx(shape[Semantic::waist_girth_m]).epsilon(1e-3));
-        CHECK(m.hip_girth_m == Approx(shape[Semantic::hip_girth_m]).epsilon(1e-3));
-        CHECK(m.thigh_girth_m == Approx(shape[Semantic::thigh_girth_m]).epsilon(1e-3));
-        CHECK(m.calf_girth_m == Approx(shape[Semantic::calf_girth_m]).epsilon(1e-3));
-        CHECK(m.shoulder_height_m == Approx(shape[Semantic::shoulder_height_m]).epsilon(1e-3));
-        CHECK(m.crotch_height_m == Approx(shape[Semantic::crotch_height_m]).epsilon(1e-3));
+        CHECK(m.height_m == Approx(shape[Semantic::height_m]).epsilon(2e-3));
+        CHECK(m.chest_girth_m == Approx(shape[Semantic::chest_girth_m]).epsilon(2e-3));
+        CHECK(m.waist_girth_m == Approx(shape[Semantic::waist_girth_m]).epsilon(2e-3));
+        CHECK(m.hip_girth_m == Approx(shape[Semantic::hip_girth_m]).epsilon(2e-3));
+        CHECK(m.thigh_girth_m == Approx(shape[Semantic::thigh_girth_m]).epsilon(2e-3));
+        CHECK(m.calf_girth_m == Approx(shape[Semantic::calf_girth_m]).epsilon(2e-3));
+        CHECK(m.shoulder_height_m == Approx(shape[Semantic::shoulder_height_m]).epsilon(2e-3));
+        CHECK(m.crotch_height_m == Approx(shape[Semantic::crotch_height_m]).epsilon(2e-3));
         // Weight follows from the volume: close to the request for typical bodies.
         CHECK(m.weight_kg == Approx(shape[Semantic::weight_kg]).epsilon(0.12));
         // The shaped mesh stays a valid closed surface with joints inside the limbs.
@@ -148,7 +148,7 @@ TEST_CASE("ANSUR II acceptance: 200 records measure as requested", "[body][shape
           << " % | " << 100 * percentile(weight_err, 0.95) << " % | " << 100 * percentile(weight_err, 1.0)
           << " % |\n";
     const int failures = static_cast<int>(std::count(not_converged.begin(), not_converged.end(), 1));
-    table << "\nRecords not converged to 0.01 %: " << failures << " of " << records.size() << "\n";
+    table << "\nRecords not converged to 0.1 %: " << failures << " of " << records.size() << "\n";
     WARN("ANSUR acceptance table\n" << table.str());
     if (const char* out = std::getenv("DRAPE_WRITE_DOCS"); out && *out)
         std::ofstream(std::string(out) + "/ansur-acceptance-table.md") << table.str();

@@ -21,7 +21,7 @@ Gender parse_gender(std::string_view s);
 enum class Semantic : int {
     height_m = 0,          ///< stature, floor to vertex of the head
     weight_kg = 1,         ///< body mass
-    muscle = 2,            ///< 0 (little) .. 1 (very muscular); ANSUR proxy, see docs/body-model.md
+    muscle = 2,            ///< 0 (little) .. 1 (very muscular); ANSUR proxy, see docs/shape-prior.md
     chest_girth_m = 3,     ///< horizontal girth at bust-point (nipple) level (ANSUR chestcircumference)
     waist_girth_m = 4,     ///< horizontal girth at the navel (ANSUR waistcircumference, omphalion)
     hip_girth_m = 5,       ///< girth at maximum buttock protrusion (ANSUR buttockcircumference)

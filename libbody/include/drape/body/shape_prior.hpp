@@ -24,17 +24,34 @@ struct ShapePrior {
 
     const GaussianPrior& of(Gender g) const { return g == Gender::female ? female : male; }
 
-    /// The built-in prior (ANSUR II figures embedded as constants).
+    /// The built-in prior (ANSUR II figures embedded as constants; defined in the generated
+    /// src/ansur_prior_data.cpp, see docs/shape-prior.md to regenerate it).
     static ShapePrior ansur2();
 
     /// Completes a partial request: unspecified parameters take the conditional mean of the
-    /// gender's Gaussian given the specified ones. An unspecified gender is chosen as the
-    /// one under which the specified values are more likely (female when nothing is given).
-    /// \throw drape::InvalidInput if a given value is not finite, or lies outside
-    ///        [0.5 * min, 1.5 * max] of the gender's range (naming the key and value).
+    /// gender's Gaussian given the specified ones,
+    ///   x_u = mean_u + S_ug S_gg^-1 (x_g - mean_g),
+    /// and given values are returned unchanged. An unspecified gender is chosen as the one
+    /// under which the specified values are more likely (marginal Gaussian density, equal
+    /// prior odds; female when nothing is given).
+    ///
+    /// Predictions are not clamped to [min, max]: a request far from the survey (e.g. a
+    /// 2.2 m stature) yields predictions outside the survey's range, which is the honest
+    /// extrapolation. Two exceptions keep the result a valid SemanticShape: a predicted
+    /// muscle is clamped to [0, 1]; and if the predicted heights break crotch < shoulder <
+    /// stature, every predicted height is re-placed between its nearest given heights (the
+    /// floor counting as 0) in proportion to the gender's mean heights, or scaled from the
+    /// highest given height by the ratio of the means. See docs/shape-prior.md.
+    /// \throw drape::InvalidInput naming the key and value if a given value is not finite,
+    ///        not positive (muscle: not in [0, 1]), or lies outside [0.5 * min, 1.5 * max] of
+    ///        the chosen gender's range; if given heights are not ordered crotch < shoulder
+    ///        < stature; or if the prediction is not a valid shape (a predicted length not
+    ///        positive: only for combinations far outside the survey).
     SemanticShape complete(const SemanticRequest& request) const;
 
-    /// Squared Mahalanobis distance of `shape` under its gender's Gaussian.
+    /// Squared Mahalanobis distance of `shape` under its gender's Gaussian
+    /// (about chi-squared with 10 degrees of freedom for surveyed people: mean 10).
+    /// \throw drape::InvalidInput if that covariance is not positive definite.
     double mahalanobis2(const SemanticShape& shape) const;
 };
 
