@@ -120,9 +120,10 @@ BodyModel build_default_model() {
     model.skin_weights = base.skin_weights;
     model.landmarks = base.landmarks;
     model.prior = ShapePrior::ansur2();
-    // Whole-body density including lung air; Krzywicki & Chinn (1967) and later
-    // hydrodensitometry put adults at 1.00-1.07 g/cm^3 without, ~0.98-1.01 with, lung air.
-    model.density_kg_m3 = 1000.0;
+    // Whole-body density: Siri's two-compartment model, D = 4.95 / (f + 4.5) g/cm^3, gives
+    // 1.04 at f = 25 % body fat (typical of the ANSUR II population) before lung air;
+    // residual lung volume lowers it by ~1-2 % (Siri 1961; Brozek et al. 1963).
+    model.density_kg_m3 = 1030.0;
 
     const Parts parts = part_weights(base.skin_weights);
     const TrunkAxis axis = trunk_axis(V, parts.trunk);
@@ -215,10 +216,10 @@ BodyModel build_default_model() {
     model.semantic_map.A.resize(kBasisCount, 1 + kSemanticCount);
     model.semantic_map.b = Eigen::VectorXd::Zero(kBasisCount);
     model.semantic_map.refinable = Eigen::VectorXd::Zero(kBasisCount);
-    for (Basis b : {Basis::fat, Basis::crotch_height, Basis::torso_length, Basis::head_neck,
-                    Basis::chest_girth, Basis::waist_girth, Basis::hip_girth, Basis::thigh_girth,
-                    Basis::calf_girth})
+    for (Basis b : {Basis::crotch_height, Basis::torso_length, Basis::head_neck, Basis::chest_girth,
+                    Basis::waist_girth, Basis::hip_girth, Basis::thigh_girth, Basis::calf_girth})
         model.semantic_map.refinable[static_cast<int>(b)] = 1.0;
+    model.semantic_map.refinable[static_cast<int>(Basis::fat)] = 2.0;
     // A needs measurement Jacobians, which need the basis in place: fill it column by column.
     model.semantic_map.A.setZero();
     const LinearRule rule = linear_rule(model);

@@ -42,8 +42,10 @@ struct SemanticMap {
     Eigen::VectorXd b;  ///< K
     Eigen::Matrix<double, 1 + kSemanticCount, 1> reference =
         Eigen::Matrix<double, 1 + kSemanticCount, 1>::Zero();  ///< v_ref
-    /// K: 1 where shape_body() may adjust the coefficient to match the requested
-    /// measurements, 0 where it stays at the linear map's value (e.g. gender, muscle).
+    /// K: how shape_body() may refine each coefficient after the linear map: 0 = fixed
+    /// (e.g. gender, muscle); 1 = adjusted to match the requested girths and heights
+    /// (at least 8 such columns); 2 = the one column searched (within +-1 of its linear
+    /// value) to match the requested weight by volume x density.
     Eigen::VectorXd refinable;
 };
 
@@ -59,7 +61,7 @@ struct BodyModel {
     Landmarks landmarks;
     SemanticMap semantic_map;
     ShapePrior prior;
-    double density_kg_m3 = 1010.0;  ///< for weight = volume * density
+    double density_kg_m3 = 1030.0;  ///< for weight = volume * density (kg/m^3)
 
     int vertex_count() const { return static_cast<int>(template_vertices.rows()); }
     int shape_count() const { return static_cast<int>(shape_basis.cols()); }

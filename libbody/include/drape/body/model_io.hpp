@@ -12,23 +12,36 @@
 namespace drape::body {
 
 /// Writes the whole model (template, faces, shape basis, skeleton, joint regressor, skin
-/// weights, landmarks, semantic map, prior, units) to an HDF5 file, atomically.
-/// \throw drape::IoError if the file cannot be written.
+/// weights, landmarks, semantic map, prior, units) to an HDF5 file, atomically (an
+/// existing file is replaced only once the new one is complete). Reading it back with
+/// load_model() is bit-exact.
+/// \throw drape::InvalidInput (nothing written) if the model breaks an invariant that
+///        load_model() checks, naming the dataset it would go to;
+///        drape::IoError if the file cannot be written (e.g. the folder does not exist).
 void save_model(const BodyModel& model, const std::filesystem::path& path);
 
 /// Reads a model written by save_model or converted by a user (docs/body-model-format.md).
-/// \throw drape::IoError if the file cannot be read; drape::InvalidInput naming the
-///        dataset if its content is inconsistent (wrong shape, bad indices, NaN, ...).
+/// Never prints HDF5 diagnostics; every problem is reported by the exception.
+/// \throw drape::IoError naming the path if the file is missing, unreadable or not HDF5;
+///        drape::InvalidInput naming the file and dataset if its content is inconsistent
+///        (wrong shape, bad indices, NaN, different skeleton, weights not summing to 1, ...).
 BodyModel load_model(const std::filesystem::path& path);
 
 /// Writes a posed body as a rigged glTF 2.0 binary: the shaped rest mesh bound to the
 /// 22-joint skeleton (inverse bind matrices, <= 4 weights per vertex), with the pose set
 /// on the joint nodes, so that a viewer shows the posed body and Blender imports a posable
-/// armature. Written atomically. \throw drape::IoError, drape::InvalidInput.
+/// armature. Written atomically. Joint node j carries global(parent)^-1 * global_j of
+/// forward_kinematics(shaped.joints, pose), so skinning in the viewer reproduces
+/// pose_body(model, shaped, pose) (to float precision).
+/// \param shaped  rest vertices (#V x 3, the model's vertex count) and joints of the body.
+/// \throw drape::InvalidInput on size mismatch, non-finite input or an invalid pose;
+///        drape::IoError if the file cannot be written.
 void export_glb(const std::filesystem::path& path, const BodyModel& model,
                 const ShapedBody& shaped, const Pose& pose);
 
-/// Writes a triangle mesh (#V x 3, #F x 3) as OBJ with normals, atomically.
+/// Writes a triangle mesh (#V x 3, #F x 3) as OBJ with area-weighted vertex normals
+/// (exact decimal coordinates), atomically.
+/// \throw drape::InvalidInput on bad shapes / indices / non-finite values; drape::IoError.
 void export_obj(const std::filesystem::path& path, const Eigen::MatrixXd& V,
                 const Eigen::MatrixXi& F);
 
@@ -38,8 +51,9 @@ struct TriangleMesh {
     Eigen::MatrixXi F;  ///< #F x 3
 };
 
-/// Reads a glTF (.gltf/.glb) or OBJ mesh (all meshes merged, triangulated, duplicate
-/// vertices welded), in the file's units and frame.
+/// Reads a glTF (.gltf/.glb) or OBJ mesh (all meshes merged with their node transforms,
+/// triangulated, exactly coincident vertices welded, degenerate triangles dropped), in the
+/// file's units and frame. Coordinates pass through assimp in single precision.
 /// \throw drape::IoError if unreadable, drape::InvalidInput if it holds no triangles.
 TriangleMesh import_mesh(const std::filesystem::path& path);
 

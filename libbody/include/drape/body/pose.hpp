@@ -15,7 +15,8 @@ namespace drape::body {
 struct Pose {
     Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< of the root, world, metres
     /// Row j: axis-angle rotation (radians) of joint j in its parent's frame, applied about
-    /// the joint's rest position. Rows of end sites (head_top, toes) are ignored.
+    /// the joint's rest position. Rows of end sites (head_top, toes) only turn
+    /// their own frame: they move no vertex or joint position.
     Eigen::Matrix<double, kJointCount, 3> rotations =
         Eigen::Matrix<double, kJointCount, 3>::Zero();
 
