@@ -268,10 +268,11 @@ Eigen::VectorXd default_linear_coefficients(const LinearRule& rule,
     Eigen::VectorXd c = Eigen::VectorXd::Zero(kBasisCount);
     c[static_cast<int>(Basis::femininity)] = female - 0.5;
     c[static_cast<int>(Basis::muscle)] = 2.0 * (muscle - 0.5);
-    // Soft tissue from the linearised body-mass index about 24 kg/m^2 (1 unit per 8 kg/m^2).
+    // Soft tissue from the linearised body-mass index: 0 at 24 kg/m^2, +1 (the design's
+    // fullest) at 40 kg/m^2, so that ANSUR II's range (BMI ~17-45) stays near [-1, 1].
     const double bmi_lin = weight / (ref_height * ref_height) -
                            2.0 * 70.0 / (ref_height * ref_height * ref_height) * (height - ref_height);
-    c[static_cast<int>(Basis::fat)] = (bmi_lin - 24.0) / 8.0;
+    c[static_cast<int>(Basis::fat)] = (bmi_lin - 24.0) / 16.0;
     // Arms and shoulders scale with stature (arm span ~ stature; ANSUR II biacromial
     // breadth ~ 0.23 x stature).
     c[static_cast<int>(Basis::arm_scale)] = height / ref_height - 1.0;

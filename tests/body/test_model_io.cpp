@@ -608,7 +608,7 @@ TEST_CASE("save_model: invalid models and failed writes", "[body][io]") {
     SECTION("a failed write leaves the existing file untouched") {
         // The temporary's name (".<name>.tmp<pid>_<n>") exceeds NAME_MAX while <name>
         // itself does not, so creating the HDF5 file fails after the checks passed.
-        const fs::path p = dir / (std::string(240, 'm') + ".h5");
+        const fs::path p = dir / (std::string(250, 'm') + ".h5");
         std::ofstream(p) << "precious";
         REQUIRE_THROWS_AS(save_model(m, p), drape::IoError);
         std::ifstream in(p);
