@@ -40,7 +40,7 @@ TEST_CASE("shape parameters are validated", "[capi]") {
     CHECK(drape_body_set_shape(body, &p) == DRAPE_ERROR_INVALID_ARGUMENT);
     CHECK(std::string(drape_last_error_message()).find("height_m") != std::string::npos);
     drape_shape_params_init(&p);
-    p.gender = static_cast<drape_gender>(7);
+    p.gender = 7;
     CHECK(drape_body_set_shape(body, &p) == DRAPE_ERROR_INVALID_ARGUMENT);
     // A failed call leaves the body usable and unchanged.
     drape_measurements m;

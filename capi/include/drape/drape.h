@@ -65,7 +65,7 @@ typedef enum drape_gender {
  *  ANSUR II prior given the others. */
 typedef struct drape_shape_params {
     uint32_t struct_size;
-    drape_gender gender;
+    int32_t gender; /* a drape_gender value */
     double height_m;
     double weight_kg;
     double muscle; /* 0..1 */
