@@ -251,7 +251,7 @@ struct Fitter {
         if (stage == Stage::full && options.silhouette_weight + options.skin_weight > 0) {
             const int n = rest.vertex_count();
             const double inside_w =
-                std::sqrt(options.silhouette_weight * kImageJointCount / std::max(1, n));
+                std::sqrt(options.silhouette_weight * 2.0 * kImageJointCount / std::max(1, n));
             const double pull_w = pulls.empty() ? 0.0
                                                 : std::sqrt(options.skin_weight * kImageJointCount /
                                                             double(pulls.size()));
@@ -402,17 +402,33 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
         for (int j = 0; j < kJointCount; ++j) p.rot.segment<3>(3 * j) = init.rotations.row(j).transpose();
         p.trans = init.translation;
         p.cam << init.scale_px_per_m, init.offset_px.x(), init.offset_px.y();
+        if (!p.rot.allFinite() || !p.trans.allFinite() || !p.cam.allFinite() || !(p.cam[0] > 0)) {
+            // Degenerate joints (e.g. all at one pixel): start from the rest pose.
+            p.rot.setZero();
+            p.trans.setZero();
+            p.cam << 100.0 * F.unit_px / std::max(0.5, p.z[0]), 0.5 * inputs.person.width,
+                0.5 * inputs.person.height;
+        }
         if (options.camera == CameraModel::pinhole) {
             // The hip midpoint at depth 0 seen at the same scale: distance = f / s.
             F.fixed.focal_px = options.focal_px;
             F.fixed.offset_px = Eigen::Vector2d(0.5 * inputs.person.width, 0.5 * inputs.person.height);
-            F.fixed.distance_m = options.focal_px / init.scale_px_per_m;
-            p.trans.x() += (init.offset_px.x() - F.fixed.offset_px.x()) / init.scale_px_per_m;
-            p.trans.y() -= (init.offset_px.y() - F.fixed.offset_px.y()) / init.scale_px_per_m;
+            const double s = p.cam[0];
+            F.fixed.distance_m = options.focal_px / s;
+            p.trans.x() += (p.cam[1] - F.fixed.offset_px.x()) / s;
+            p.trans.y() -= (p.cam[2] - F.fixed.offset_px.y()) / s;
         }
     }
 
+    Params good = p;  // the last finite parameters, reported if a stage diverges
     auto finish = [&]() {
+        const bool finite = p.rot.allFinite() && p.z.allFinite() && p.cam.allFinite() &&
+                            p.trans.allFinite() && (options.camera == CameraModel::pinhole || p.cam[0] > 0);
+        if (!finite) {
+            p = good;
+            F.last_termination = ceres::FAILURE;
+            if (F.message.empty()) F.message = "the solver produced non-finite parameters";
+        }
         fit.pose = p.pose();
         fit.camera = p.camera(F.fixed);
         fit.coefficients = detail::semantic_to_coefficients(model, F.gender, p.z);
@@ -443,8 +459,7 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
         if (F.cancelled) {
             summary.termination = Termination::cancelled;
             summary.message = "cancelled by the progress callback";
-        } else if (F.last_termination == ceres::FAILURE || !p.rot.allFinite() || !p.z.allFinite() ||
-                   !p.cam.allFinite()) {
+        } else if (F.last_termination == ceres::FAILURE) {
             summary.termination = Termination::failed;
             summary.message = F.message.empty() ? "the solver failed" : F.message;
         } else if (F.last_termination == ceres::NO_CONVERGENCE) {
@@ -456,22 +471,32 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
     };
 
     auto report = [&](double f) { return !options.progress || options.progress(f); };
-    if (!report(0.0)) {
+    auto cancel = [&]() {
         F.cancelled = true;
         return finish();
-    }
+    };
+    if (!report(0.0)) return cancel();
     const int it = options.max_iterations;
+    auto keep = [&]() {
+        const bool ok = p.rot.allFinite() && p.z.allFinite() && p.cam.allFinite() &&
+                        p.trans.allFinite();
+        if (ok) good = p;
+        return ok;
+    };
     F.solve(p, Stage::global, {}, 0.0, 0.1, it);
-    if (F.cancelled || !report(0.1)) return F.cancelled = true, finish();
+    if (!keep()) return finish();
+    if (F.cancelled || !report(0.1)) return cancel();
     // The joints-only stages only prepare the silhouette rounds: a few iterations suffice.
     F.solve(p, Stage::pose, {}, 0.1, 0.3, std::min(it, 30));
-    if (F.cancelled || !report(0.3)) return F.cancelled = true, finish();
+    if (!keep()) return finish();
+    if (F.cancelled || !report(0.3)) return cancel();
     for (int round = 0; round < kSilhouetteRounds; ++round) {
         const double from = 0.3 + 0.7 * round / kSilhouetteRounds;
         const double to = 0.3 + 0.7 * (round + 1) / kSilhouetteRounds;
         const bool last = round + 1 == kSilhouetteRounds;
         F.solve(p, Stage::full, F.skin_pulls(p), from, to, last ? it : std::min(it, 20));
-        if (F.cancelled || !report(to)) return F.cancelled = true, finish();
+        if (!keep()) return finish();
+        if (F.cancelled || !report(to)) return cancel();
     }
     return finish();
 }

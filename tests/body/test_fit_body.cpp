@@ -398,6 +398,20 @@ TEST_CASE("fit_body rejects bad inputs with messages naming them", "[body][fit][
     CHECK(FitOptions{}.is_valid(&why));
 }
 
+TEST_CASE("fit_body survives degenerate joints", "[body][fit][errors]") {
+    FitInputs in;
+    in.person = make_mask(40, 60, 1);
+    for (int i = 0; i < kImageJointCount; ++i) in.joints_px.row(i) << 20, 30;  // all at one pixel
+    BodyFit fit;
+    FitOptions o;
+    o.max_iterations = 10;
+    const FitSummary summary = fit_body(BodyModel::default_model(), in, o, fit);
+    INFO(summary.brief_report());
+    CHECK(fit.pose.is_valid());
+    CHECK(fit.camera.is_valid());
+    CHECK(std::isfinite(summary.mean_joint_error_px));
+}
+
 TEST_CASE("fit_body can be cancelled", "[body][fit]") {
     const SyntheticPhoto s = synthetic_photo(1.65);
     FitOptions o;

@@ -16,7 +16,11 @@
 namespace drape::body {
 
 struct FitInputs {
-    Eigen::Matrix<double, kImageJointCount, 2> joints_px;  ///< in kImageJoints order, pixels
+    /// In kImageJoints order, pixels in the camera.hpp frame: origin at the image's top-left
+    /// corner, the centre of pixel (column i, row j) at (i + 0.5, j + 0.5). (Fashionista's
+    /// 1-based MATLAB coordinates convert by subtracting 0.5; 0-based centres by adding 0.5.)
+    /// Every joint must lie within [0, width] x [0, height] of the person mask.
+    Eigen::Matrix<double, kImageJointCount, 2> joints_px;
     Mask person;                    ///< person silhouette (garments included)
     Mask skin;                      ///< optional (width 0 = none): visible skin pixels
     std::optional<double> height_m;  ///< known stature
@@ -30,9 +34,15 @@ struct FitOptions {
     double focal_px = 0;              ///< required (> 0) for the pinhole camera
     int max_iterations = 100;         ///< per Ceres stage
     int threads = 2;
-    double joint_weight = 1.0;        ///< weights of the energy terms (documented in docs/)
-    double silhouette_weight = 1.0;
-    double skin_weight = 1.0;
+    /// Weights of the energy terms (docs/body-fitting.md). Image residuals are measured in
+    /// percent of the person's pixel height, and each term is normalised so that weight 1
+    /// makes "every joint 1 % off" (joints), "the body on average 1 % outside the person
+    /// mask" (silhouette, counted twice) and "uncovered skin on average 1 % from the body"
+    /// (skin) cost alike. Pose prior: 10 per radian outside JointLimits::standard() plus
+    /// 0.3 per radian away from the rest pose; shape prior: the ANSUR Mahalanobis distance.
+    double joint_weight = 1.0;        ///< > 0
+    double silhouette_weight = 1.0;   ///< keep the body inside the person mask
+    double skin_weight = 1.0;         ///< make the body cover the skin mask
     double pose_prior_weight = 1.0;
     double shape_prior_weight = 1.0;
     bool fit_shape = true;            ///< false: keep the prior mean shape (or height only)
@@ -64,7 +74,13 @@ struct FitSummary {
     std::string brief_report() const;
 };
 
-/// Fits pose, shape and camera. `fit` receives the result (also when not converged).
+/// Fits pose, shape and camera (docs/body-fitting.md): Taylor's (2000) initialisation from
+/// the joints, then Ceres least squares in stages (camera + global rotation; + joint
+/// rotations; + semantic shape z with the silhouette, skin and shape-prior terms, three
+/// rounds that re-render the body to find the uncovered skin). Only the 10 continuous
+/// semantic values move; the gender is the given one or the prior's choice.
+/// `fit` receives the result (also when not converged; for a failed solve, the last finite
+/// parameters). Never aborts: numerical trouble is reported in the summary.
 /// \throw drape::InvalidInput on bad inputs (NaN joints, joints outside the mask's image,
 ///        empty or mismatched masks, invalid options), naming the problem.
 FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOptions& options,

@@ -1,0 +1,293 @@
+// drape fit-body IMAGE --joints J.json (--silhouette S.png [--skin K.png] | --labels L.png)
+//                [--height M] [--gender female|male] [--focal PX] --out DIR
+#include "body_json.hpp"
+#include "commands.hpp"
+#include "image_io.hpp"
+#include "json_io.hpp"
+
+#include <drape/body/fit_body.hpp>
+#include <drape/body/model_io.hpp>
+#include <drape/core/errors.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+namespace drape::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using JointsPx = Eigen::Matrix<double, body::kImageJointCount, 2>;
+
+struct FitArgs {
+    std::string image;
+    std::string joints;
+    std::string silhouette;
+    std::string skin;
+    std::string labels;
+    std::optional<double> height_m;
+    std::string gender;
+    std::optional<double> focal_px;
+    std::string out;
+    std::string model;
+    int threads = 2;
+    bool no_shape = false;
+};
+
+/// How the JSON's pixel coordinates relate to the camera.hpp frame (origin at the image's
+/// top-left corner, pixel centres at +0.5).
+enum class PixelOrigin { one_based, zero_based, corner };
+
+double origin_offset(PixelOrigin o) {
+    switch (o) {
+        case PixelOrigin::one_based: return -0.5;   // MATLAB: pixel 1's centre is at 1
+        case PixelOrigin::zero_based: return 0.5;   // C: pixel 0's centre is at 0
+        case PixelOrigin::corner: return 0.0;
+    }
+    return 0.0;
+}
+
+const char* origin_name(PixelOrigin o) {
+    switch (o) {
+        case PixelOrigin::one_based: return "one_based";
+        case PixelOrigin::zero_based: return "zero_based";
+        case PixelOrigin::corner: return "corner";
+    }
+    return "";
+}
+
+struct JointsFile {
+    JointsPx joints_px;  ///< camera frame
+    PixelOrigin origin = PixelOrigin::one_based;
+};
+
+JointsFile read_joints(const std::string& file, int width, int height) {
+    const nlohmann::json j = read_json_file(file);
+    reject_unknown_keys(j, {"joints", "joint_names", "image_size", "pixel_origin"}, file);
+    JointsFile out;
+    if (j.contains("pixel_origin")) {
+        const std::string o = j["pixel_origin"].is_string() ? j["pixel_origin"].get<std::string>()
+                                                             : j["pixel_origin"].dump();
+        if (o == "one_based") out.origin = PixelOrigin::one_based;
+        else if (o == "zero_based") out.origin = PixelOrigin::zero_based;
+        else if (o == "corner") out.origin = PixelOrigin::corner;
+        else
+            throw InvalidInput(file + ": field 'pixel_origin' = " + o +
+                               " is not one of one_based, zero_based, corner");
+    }
+    if (!j.contains("joints") || !j["joints"].is_array())
+        throw InvalidInput(file + ": field 'joints' must be an array of 14 [x, y] pixel pairs");
+    const auto& arr = j["joints"];
+    if (arr.size() != body::kImageJointCount)
+        throw InvalidInput(file + ": field 'joints' has " + std::to_string(arr.size()) +
+                           " entries, expected 14 (right_ankle ... head)");
+    if (j.contains("joint_names")) {
+        const auto& names = j["joint_names"];
+        bool ok = names.is_array() && names.size() == body::kImageJointCount;
+        for (size_t i = 0; ok && i < names.size(); ++i)
+            ok = names[i].is_string() && names[i].get<std::string>() == body::kImageJointNames[i];
+        if (!ok)
+            throw InvalidInput(file + ": field 'joint_names' must list the 14 joints in the order "
+                               "right_ankle, right_knee, right_hip, left_hip, left_knee, left_ankle, "
+                               "right_hand, right_elbow, right_shoulder, left_shoulder, left_elbow, "
+                               "left_hand, neck, head; got " + names.dump());
+    }
+    if (j.contains("image_size")) {
+        const auto& s = j["image_size"];
+        if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() ||
+            s[0].get<double>() != width || s[1].get<double>() != height)
+            throw InvalidInput(file + ": field 'image_size' = " + s.dump() +
+                               " does not match the photo's " + std::to_string(width) + " x " +
+                               std::to_string(height) + " pixels");
+    }
+    const double shift = origin_offset(out.origin);
+    for (int i = 0; i < body::kImageJointCount; ++i) {
+        const auto& p = arr[static_cast<size_t>(i)];
+        const std::string name = "joint " + std::to_string(i) + " (" +
+                                 std::string(body::kImageJointNames[static_cast<size_t>(i)]) + ")";
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+            throw InvalidInput(file + ": " + name + " must be [x, y] numbers, got " + p.dump());
+        const double x = p[0].get<double>(), y = p[1].get<double>();
+        if (!std::isfinite(x) || !std::isfinite(y))
+            throw InvalidInput(file + ": " + name + " is not finite: " + p.dump());
+        out.joints_px(i, 0) = x + shift;
+        out.joints_px(i, 1) = y + shift;
+        const double u = out.joints_px(i, 0), v = out.joints_px(i, 1);
+        if (u < 0 || v < 0 || u > width || v > height)
+            throw InvalidInput(file + ": " + name + " = " + p.dump() + " lies outside the " +
+                               std::to_string(width) + " x " + std::to_string(height) + " photo");
+    }
+    return out;
+}
+
+void require_size(const body::Mask& m, const cv::Mat& photo, const std::string& what,
+                  const std::string& file) {
+    if (m.width != photo.cols || m.height != photo.rows)
+        throw InvalidInput(what + " '" + file + "' is " + std::to_string(m.width) + " x " +
+                           std::to_string(m.height) + " pixels but the photo is " +
+                           std::to_string(photo.cols) + " x " + std::to_string(photo.rows));
+}
+
+nlohmann::json camera_json(const body::Camera& c) {
+    nlohmann::json j;
+    if (c.model == body::CameraModel::weak_perspective) {
+        j["model"] = "weak_perspective";
+        j["scale_px_per_m"] = c.scale_px_per_m;
+    } else {
+        j["model"] = "pinhole";
+        j["focal_px"] = c.focal_px;
+        j["distance_m"] = c.distance_m;
+    }
+    j["offset_px"] = {c.offset_px.x(), c.offset_px.y()};
+    j["pixel_frame"] = "origin at the top-left corner of the image, pixel centres at +0.5";
+    return j;
+}
+
+const char* termination_name(body::Termination t) {
+    switch (t) {
+        case body::Termination::converged: return "converged";
+        case body::Termination::max_iterations: return "max_iterations";
+        case body::Termination::failed: return "failed";
+        case body::Termination::cancelled: return "cancelled";
+    }
+    return "";
+}
+
+void run_fit_body(const FitArgs& args) {
+    if (args.labels.empty() && args.silhouette.empty())
+        throw InvalidInput("drape fit-body: give --silhouette S.png (or --labels L.png)");
+    if (!args.labels.empty() && (!args.silhouette.empty() || !args.skin.empty()))
+        throw InvalidInput("drape fit-body: --labels replaces --silhouette and --skin; give one or the other");
+
+    const cv::Mat photo = read_photo(args.image);
+    const JointsFile joints = read_joints(args.joints, photo.cols, photo.rows);
+
+    body::FitInputs in;
+    in.joints_px = joints.joints_px;
+    if (!args.labels.empty()) {
+        LabelMasks masks = read_label_masks(args.labels);
+        require_size(masks.person, photo, "label map", args.labels);
+        in.person = std::move(masks.person);
+        if (masks.skin.count() > 0) in.skin = std::move(masks.skin);
+    } else {
+        in.person = read_mask(args.silhouette, "silhouette");
+        require_size(in.person, photo, "silhouette", args.silhouette);
+        if (!args.skin.empty()) {
+            in.skin = read_mask(args.skin, "skin");
+            require_size(in.skin, photo, "skin mask", args.skin);
+        }
+    }
+    in.height_m = args.height_m;
+    if (!args.gender.empty()) in.gender = body::parse_gender(args.gender);
+
+    body::FitOptions options;
+    options.threads = args.threads;
+    options.fit_shape = !args.no_shape;
+    if (args.focal_px) {
+        options.camera = body::CameraModel::pinhole;
+        options.focal_px = *args.focal_px;
+    }
+
+    const body::BodyModel loaded = args.model.empty() ? body::BodyModel() : body::load_model(args.model);
+    const body::BodyModel& model = args.model.empty() ? body::BodyModel::default_model() : loaded;
+
+    // Fail before the fit, not after it.
+    std::error_code ec;
+    fs::create_directories(args.out, ec);
+    std::error_code ec_dir;
+    if (!fs::is_directory(args.out, ec_dir))
+        throw IoError("cannot create the output folder '" + args.out + "'" +
+                      (ec ? ": " + ec.message() : std::string()));
+
+    body::BodyFit fit;
+    const body::FitSummary summary = body::fit_body(model, in, options, fit);
+    std::cerr << "drape fit-body: " << summary.brief_report() << "\n";
+    if (!summary.usable()) throw std::runtime_error(summary.brief_report());
+
+    const body::ShapedBody shaped = body::shape_from_coefficients(model, fit.coefficients);
+    const body::PosedBody posed = body::pose_body(model, shaped, fit.pose);
+    const body::Mask silhouette =
+        body::render_silhouette(posed.vertices, model.faces, fit.camera, photo.cols, photo.rows);
+
+    // Quality figures (docs/body-fitting.md): person height = head-top joint to the lower ankle.
+    int inter = 0, uni = 0, skin_total = 0, skin_covered = 0;
+    for (size_t i = 0; i < silhouette.pixels.size(); ++i) {
+        const bool b = silhouette.pixels[i] != 0, p = in.person.pixels[i] != 0;
+        inter += b && p;
+        uni += b || p;
+        if (!in.skin.pixels.empty() && in.skin.pixels[i]) {
+            ++skin_total;
+            skin_covered += b;
+        }
+    }
+    const double height_px =
+        std::max(in.joints_px(0, 1), in.joints_px(5, 1)) - in.joints_px(13, 1);
+
+    nlohmann::json j;
+    j["format"] = "drape.body_fit";
+    j["version"] = 1;
+    j["image"] = {{"file", args.image}, {"width", photo.cols}, {"height", photo.rows}};
+    j["pose"] = to_json(fit.pose);
+    j["shape"] = to_json(fit.shape);
+    j["coefficients"] = std::vector<double>(fit.coefficients.data(),
+                                            fit.coefficients.data() + fit.coefficients.size());
+    j["coefficient_names"] = model.shape_names;
+    j["camera"] = camera_json(fit.camera);
+    const double shift = origin_offset(joints.origin);
+    nlohmann::json pts = nlohmann::json::array();
+    for (int i = 0; i < body::kImageJointCount; ++i)
+        pts.push_back({fit.joints_2d(i, 0) - shift, fit.joints_2d(i, 1) - shift});
+    j["joints_2d"] = pts;
+    j["joint_names"] = std::vector<std::string>(body::kImageJointNames.begin(), body::kImageJointNames.end());
+    j["pixel_origin"] = origin_name(joints.origin);
+    j["fit"] = {{"termination", termination_name(summary.termination)},
+                {"message", summary.message},
+                {"iterations", summary.iterations},
+                {"seconds", summary.seconds},
+                {"mean_joint_error_px", summary.mean_joint_error_px},
+                {"person_height_px", height_px},
+                {"mean_joint_error_percent", 100.0 * summary.mean_joint_error_px / std::max(1.0, height_px)},
+                {"person_iou", uni > 0 ? double(inter) / uni : 0.0}};
+    if (skin_total > 0) j["fit"]["skin_coverage"] = double(skin_covered) / skin_total;
+
+    const fs::path dir(args.out);
+    write_json_file(dir / "body.json", j);
+    body::export_glb(dir / "body.glb", model, shaped, fit.pose);
+    write_png(dir / "overlay.png", draw_fit_overlay(photo, silhouette, fit.joints_2d, in.joints_px));
+}
+
+}  // namespace
+
+void add_fit_body_command(CLI::App& app) {
+    auto args = std::make_shared<FitArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "fit-body", "Fit the body model (pose, semantic shape, camera) to a photo from its 14 "
+                    "joints and the person's silhouette; writes DIR/body.json, body.glb, overlay.png");
+    cmd->add_option("image", args->image, "the photo (JPEG/PNG; EXIF orientation is applied)")->required();
+    cmd->add_option("--joints", args->joints,
+                    "JSON {\"joints\": 14 [x, y] pixels (right_ankle ... head), optional "
+                    "\"pixel_origin\": one_based (default, MATLAB) | zero_based | corner}")
+        ->required();
+    cmd->add_option("--silhouette", args->silhouette,
+                    "PNG mask of the person, garments included (non-zero = person)");
+    cmd->add_option("--skin", args->skin, "PNG mask of the visible skin (non-zero = skin)");
+    cmd->add_option("--labels", args->labels,
+                    "instead of --silhouette/--skin: a Fashionista/CCP class-id label map (8-bit "
+                    "PNG); person = all classes but null, accessories, bag, hair, hat, purse, "
+                    "wallet; skin = class 41");
+    cmd->add_option("--height", args->height_m, "the person's stature, metres");
+    cmd->add_option("--gender", args->gender, "female | male (default: chosen by the prior)");
+    cmd->add_option("--focal", args->focal_px,
+                    "focal length in pixels: use a pinhole camera (default: weak perspective)");
+    cmd->add_option("--out", args->out, "output folder (created if absent)")->required();
+    cmd->add_option("--model", args->model, "body model HDF5 file (default: built-in mannequin)");
+    cmd->add_option("--threads", args->threads, "solver threads (default 2)");
+    cmd->add_flag("--no-shape", args->no_shape, "keep the prior's shape, fit pose and camera only");
+    cmd->callback([args] { run_fit_body(*args); });
+}
+
+}  // namespace drape::app
