@@ -88,7 +88,9 @@ double* param_slot(drape_shape_params* p, db::Semantic s) {
 
 void repose(drape_body_s& b) { b.posed = db::pose_body(*b.model, b.shaped, b.pose); }
 
-drape_status copy_out(const double* src, size_t n, double* out, size_t capacity, size_t* required,
+// The size-query protocol: report the size, then copy (converting) if the buffer fits.
+template <class Out, class In>
+drape_status copy_out(const In* src, size_t n, Out* out, size_t capacity, size_t* required,
                       const char* what) {
     if (required) *required = n;
     if (!out) return DRAPE_OK;
@@ -96,7 +98,7 @@ drape_status copy_out(const double* src, size_t n, double* out, size_t capacity,
         return fail(DRAPE_ERROR_INVALID_ARGUMENT, std::string(what) + ": buffer holds " +
                                                       std::to_string(capacity) + " values, " +
                                                       std::to_string(n) + " needed");
-    std::copy(src, src + n, out);
+    for (size_t i = 0; i < n; ++i) out[i] = static_cast<Out>(src[i]);
     return DRAPE_OK;
 }
 
@@ -269,17 +271,8 @@ drape_status drape_body_get_joints(drape_body body, double* out, size_t capacity
 
 drape_status drape_body_get_faces(drape_body body, int32_t* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    const auto& F = body->model->faces;
-    const size_t n = static_cast<size_t>(F.size());
-    if (required) *required = n;
-    if (!out) return DRAPE_OK;
-    if (capacity < n)
-        return fail(DRAPE_ERROR_INVALID_ARGUMENT, std::string(__func__) + ": buffer holds " +
-                                                      std::to_string(capacity) + " values, " +
-                                                      std::to_string(n) + " needed");
-    for (Eigen::Index f = 0; f < F.rows(); ++f)
-        for (int k = 0; k < 3; ++k) out[3 * f + k] = static_cast<int32_t>(F(f, k));
-    return DRAPE_OK;
+    const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> F = body->model->faces;
+    return copy_out(F.data(), static_cast<size_t>(F.size()), out, capacity, required, __func__);
 }
 
 drape_status drape_body_measure(drape_body body, drape_measurements* out) {
