@@ -365,10 +365,10 @@ SurfaceMesh polygonize_implicit(const MannequinImplicit& body, double cell_size)
     std::vector<float> values(npts, std::numeric_limits<float>::quiet_NaN());
 
     // Block corners first.
-    std::vector<int64_t> todo;
+    std::vector<int64_t> pending;
     for (int k = 0; k <= bz; ++k)
         for (int j = 0; j <= by; ++j)
-            for (int i = 0; i <= bx; ++i) todo.push_back(grid.id(i * B, j * B, k * B));
+            for (int i = 0; i <= bx; ++i) pending.push_back(grid.id(i * B, j * B, k * B));
     auto evaluate = [&](const std::vector<int64_t>& ids) {
         parallel_for(static_cast<int>(ids.size()), [&](int n) {
             const int64_t id = ids[static_cast<size_t>(n)];
@@ -378,7 +378,7 @@ SurfaceMesh polygonize_implicit(const MannequinImplicit& body, double cell_size)
             values[static_cast<size_t>(id)] = static_cast<float>(body.value(grid.point(i, j, k)));
         });
     };
-    evaluate(todo);
+    evaluate(pending);
 
     // Active blocks: a sign change at the corners or a corner close enough to the surface
     // (value() is about 1-Lipschitz, so a surface inside the block is within its diagonal).
@@ -397,7 +397,7 @@ SurfaceMesh polygonize_implicit(const MannequinImplicit& body, double cell_size)
                 }
                 if ((neg && pos) || close) active.push_back({i, j, k});
             }
-    todo.clear();
+    pending.clear();
     std::vector<char> mark(npts, 0);
     for (const auto& b : active)
         for (int k = 0; k <= B; ++k)
@@ -407,9 +407,9 @@ SurfaceMesh polygonize_implicit(const MannequinImplicit& body, double cell_size)
                     if (mark[static_cast<size_t>(id)] || !std::isnan(values[static_cast<size_t>(id)]))
                         continue;
                     mark[static_cast<size_t>(id)] = 1;
-                    todo.push_back(id);
+                    pending.push_back(id);
                 }
-    evaluate(todo);
+    evaluate(pending);
 
     SurfaceMesh mesh;
     std::unordered_map<int64_t, int> edge_vertex;

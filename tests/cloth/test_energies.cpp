@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "gray_interlock_fixture.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -134,15 +136,7 @@ TEST_CASE("stretching energy is zero at rest and invariant under rigid motion",
 }
 
 TEST_CASE("uniaxial stretch of a patch reproduces the table's stress", "[cloth][energy][physics]") {
-    // gray-interlock's table, in code (the loader is tested separately).
-    Material m;
-    m.density_kg_per_m2 = 0.187;
-    m.stretching_n_per_m = {{{16.593832, -14.695990, 34.477123, 36.860302},
-                             {46.364765, 53.694656, 261.013855, -29.691301},
-                             {49.285110, 87.596100, 206.373993, 22.768457},
-                             {123.989220, 105.181770, 365.966217, 44.217571},
-                             {139.686325, 73.592560, 413.553162, -174.43853},
-                             {127.443810, 85.848587, 405.872833, 32.238411}}};
+    Material m = drape::test::gray_interlock_material();
     const double size = 0.2;
     const ClothMesh patch = make_square_grid(1, size, Eigen::Vector3d::Zero(),
                                              Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
