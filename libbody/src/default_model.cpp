@@ -192,7 +192,7 @@ BodyModel build_default_model() {
             right ? radial(p, J(Joint::right_hip), femur_r) : radial(p, J(Joint::left_hip), femur_l);
         const Eigen::Vector3d calf_radial =
             right ? radial(p, J(Joint::right_knee), tibia_r) : radial(p, J(Joint::left_knee), tibia_l);
-        const double trunk = parts.trunk[v] + parts.clavicle[v] * 0.0;
+        const double trunk = parts.trunk[v];
         set(Basis::chest_girth, v, trunk * bump(y, y_waist, y_chest, y_acromion) * trunk_radial);
         set(Basis::waist_girth, v, trunk * bump(y, y_hip, y_waist, y_chest) * trunk_radial);
         set(Basis::hip_girth, v,

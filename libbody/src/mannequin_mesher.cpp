@@ -72,6 +72,11 @@ public:
     static int next(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
     static int prev(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
     int tail(int h) const { return to[static_cast<size_t>(prev(h))]; }
+    /// True for exactly one half-edge of each live edge (the smaller of h and its twin),
+    /// so that a loop over half-edges visits every edge once.
+    bool is_edge_key(int h) const {
+        return !face_dead[static_cast<size_t>(h / 3)] && h < opp[static_cast<size_t>(h)];
+    }
     int face_count() const { return static_cast<int>(face_dead.size()); }
 
     void build(const SurfaceMesh& mesh) {
@@ -563,9 +568,7 @@ void remesh_on_implicit(const MannequinImplicit& body, int target_vertices, int 
         for (int pass = 0; pass < 2; ++pass) {
             const int nh = 3 * hm.face_count();
             for (int h = 0; h < nh; ++h) {
-                if (hm.face_dead[static_cast<size_t>(h / 3)]) continue;
-                const int o = hm.opp[static_cast<size_t>(h)];
-                if (h > o) continue;
+                if (!hm.is_edge_key(h)) continue;
                 const int a = hm.tail(h), b = hm.to[static_cast<size_t>(h)];
                 const double len = (hm.pos[static_cast<size_t>(a)] - hm.pos[static_cast<size_t>(b)]).norm();
                 if (len > 4.0 / 3.0 * edge_target(a, b)) {
@@ -579,9 +582,7 @@ void remesh_on_implicit(const MannequinImplicit& body, int target_vertices, int 
             const int nh = 3 * hm.face_count();
             int done = 0;
             for (int h = 0; h < nh; ++h) {
-                if (hm.face_dead[static_cast<size_t>(h / 3)]) continue;
-                const int o = hm.opp[static_cast<size_t>(h)];
-                if (h > o) continue;
+                if (!hm.is_edge_key(h)) continue;
                 const int a = hm.tail(h), b = hm.to[static_cast<size_t>(h)];
                 const double target = edge_target(a, b);
                 const double len = (hm.pos[static_cast<size_t>(a)] - hm.pos[static_cast<size_t>(b)]).norm();
@@ -599,9 +600,8 @@ void remesh_on_implicit(const MannequinImplicit& body, int target_vertices, int 
         for (int pass = 0; pass < 2; ++pass) {
             const int nh = 3 * hm.face_count();
             for (int h = 0; h < nh; ++h) {
-                if (hm.face_dead[static_cast<size_t>(h / 3)]) continue;
+                if (!hm.is_edge_key(h)) continue;
                 const int o = hm.opp[static_cast<size_t>(h)];
-                if (h > o) continue;
                 const int a = hm.tail(h), b = hm.to[static_cast<size_t>(h)];
                 const int c = hm.to[static_cast<size_t>(HalfedgeMesh::next(h))];
                 const int d = hm.to[static_cast<size_t>(HalfedgeMesh::next(o))];
@@ -619,9 +619,8 @@ void remesh_on_implicit(const MannequinImplicit& body, int target_vertices, int 
         int flips = 0;
         const int nh = 3 * hm.face_count();
         for (int h = 0; h < nh; ++h) {
-            if (hm.face_dead[static_cast<size_t>(h / 3)]) continue;
+            if (!hm.is_edge_key(h)) continue;
             const int o = hm.opp[static_cast<size_t>(h)];
-            if (h > o) continue;
             const int a = hm.tail(h), b = hm.to[static_cast<size_t>(h)];
             const int c = hm.to[static_cast<size_t>(HalfedgeMesh::next(h))];
             const int d = hm.to[static_cast<size_t>(HalfedgeMesh::next(o))];
