@@ -15,6 +15,9 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # images (apps)
   nlohmann-json3-dev     # JSON in the app layer
   libcli11-dev           # command line
+  libtbb-dev             # parallel loops (cloth assembly)
+  libcgal-dev            # pattern triangulation (garments)
+  libembree-dev          # ray-traced renders (app layer)
   catch2                 # tests
 )
 missing=()
