@@ -1,16 +1,27 @@
 #include <drape/cloth/simulator.hpp>
 
+#include <drape/cloth/contact.hpp>
 #include <drape/cloth/energies.hpp>
+#include <drape/cloth/intersections.hpp>
 #include <drape/core/errors.hpp>
 
+#include "self_contact.hpp"
 #include "sparse_solver.hpp"
 
 #include <Eigen/SparseCore>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <set>
 #include <sstream>
+#include <utility>
 
 namespace drape::cloth {
 
@@ -27,9 +38,34 @@ const char* to_string(StepTermination t) {
         case StepTermination::max_iterations: return "max_iterations";
         case StepTermination::line_search_failed: return "line_search_failed";
         case StepTermination::non_finite: return "non_finite";
+        case StepTermination::cancelled: return "cancelled";
     }
     return "unknown";
 }
+
+template <typename F>
+void parallel_range(int n, F&& body, int grain = 256) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
+        for (int i = r.begin(); i != r.end(); ++i) body(i);
+    });
+}
+
+// A body-contact record of one free vertex for the current Newton iteration.
+struct VertexContact {
+    int vertex = -1;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double distance = std::numeric_limits<double>::infinity();  // signed, at query time
+    double stiffness = 0;
+};
+
+// Friction data of one vertex, lagged over a whole time step (taken at its start), so that
+// the incremental potential is a fixed function during the step's Newton iterations.
+struct FrictionContact {
+    int vertex = -1;
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double normal_force = 0;  // λ
+};
 
 }  // namespace
 
@@ -38,11 +74,14 @@ bool SimulatorOptions::is_valid(std::string* why) const {
         if (why) *why = reason;
         return false;
     };
+    auto nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
     if (!(std::isfinite(time_step_s) && time_step_s > 0))
         return fail(detail::concat("time_step_s = ", time_step_s, " must be > 0"));
     if (!gravity_m_per_s2.allFinite()) return fail("gravity_m_per_s2 is not finite");
     if (!(std::isfinite(relative_tolerance) && relative_tolerance > 0))
         return fail(detail::concat("relative_tolerance = ", relative_tolerance, " must be > 0"));
+    if (!(std::isfinite(step_relative_tolerance) && step_relative_tolerance > 0))
+        return fail(detail::concat("step_relative_tolerance = ", step_relative_tolerance, " must be > 0"));
     if (max_newton_iterations < 1)
         return fail(detail::concat("max_newton_iterations = ", max_newton_iterations, " must be >= 1"));
     if (max_step_halvings < 0 || max_step_halvings > 20)
@@ -50,6 +89,27 @@ bool SimulatorOptions::is_valid(std::string* why) const {
     if (max_line_search_halvings < 0)
         return fail(detail::concat("max_line_search_halvings = ", max_line_search_halvings,
                                    " must be >= 0"));
+    if (!(std::isfinite(contact_thickness_m) && contact_thickness_m > 0))
+        return fail(detail::concat("contact_thickness_m = ", contact_thickness_m, " must be > 0"));
+    if (!(std::isfinite(contact_stiffness_n_per_m3) && contact_stiffness_n_per_m3 > 0))
+        return fail(detail::concat("contact_stiffness_n_per_m3 = ", contact_stiffness_n_per_m3,
+                                   " must be > 0"));
+    if (!nonneg(obstacle_friction))
+        return fail(detail::concat("obstacle_friction = ", obstacle_friction, " must be >= 0"));
+    if (!nonneg(cloth_friction))
+        return fail(detail::concat("cloth_friction = ", cloth_friction, " must be >= 0"));
+    if (!(std::isfinite(friction_slip_speed_m_per_s) && friction_slip_speed_m_per_s > 0))
+        return fail(detail::concat("friction_slip_speed_m_per_s = ", friction_slip_speed_m_per_s,
+                                   " must be > 0"));
+    if (!(std::isfinite(stitch_stiffness_n_per_m2) && stitch_stiffness_n_per_m2 > 0))
+        return fail(detail::concat("stitch_stiffness_n_per_m2 = ", stitch_stiffness_n_per_m2,
+                                   " must be > 0"));
+    if (!(std::isfinite(seam_closing_speed_m_per_s) && seam_closing_speed_m_per_s > 0))
+        return fail(detail::concat("seam_closing_speed_m_per_s = ", seam_closing_speed_m_per_s,
+                                   " must be > 0"));
+    if (!nonneg(air_drag_n_s_per_m3))
+        return fail(detail::concat("air_drag_n_s_per_m3 = ", air_drag_n_s_per_m3, " must be >= 0"));
+    if (!wind_m_per_s.allFinite()) return fail("wind_m_per_s is not finite");
     return true;
 }
 
@@ -57,8 +117,10 @@ std::string StepSummary::brief_report() const {
     std::ostringstream os;
     os << to_string(termination) << ": " << newton_iterations << " Newton iterations, |g|inf "
        << gradient_inf_norm_n << " N (tol " << tolerance_n << "), E " << energy_j << " J, "
-       << seconds_total * 1e3 << " ms (assembly " << seconds_assembly * 1e3 << ", solve "
-       << seconds_solve * 1e3 << ")";
+       << contacts << " contacts, " << self_contact_pairs << " self-contact pairs, stitch gap "
+       << max_stitch_gap_m * 1e3 << " mm, " << seconds_total * 1e3 << " ms (assembly "
+       << seconds_assembly * 1e3 << ", solve " << seconds_solve * 1e3 << ")";
+    if (substeps > 1) os << ", " << substeps << " substeps";
     if (!message.empty()) os << "; " << message;
     return os.str();
 }
@@ -69,43 +131,78 @@ struct Simulator::Impl {
     SimulatorOptions options;
     Eigen::MatrixX3d x, v;
     Eigen::VectorXd mass;
+    Eigen::VectorXd area;  // rest area per vertex (Σ A/3)
     std::vector<bool> pinned;
     std::vector<TriangleRest> triangles;
     std::vector<Hinge> hinges;
     std::vector<HingeRest> hinge_rests;
-    // Frozen stiffness of the current Newton iteration.
-    std::vector<StretchingStiffness> k_stretch;
-    std::vector<BendingCurve> bend_curves;  // per hinge, fixed: bending is conservative
+    std::vector<StretchingStiffness> k_stretch;  // frozen for the current Newton iteration
+    std::vector<BendingCurve> bend_curves;       // per hinge, fixed: bending is conservative
+
+    std::optional<Obstacle> obstacle;
+    std::vector<Stitch> stitches;
+    std::vector<double> stitch_rest;  // current rest length per stitch
+    internal::SelfContact self_contact{Eigen::MatrixX3i(0, 3), 0};
+
     // Free-dof numbering: dof_index[3 i + c] = column in the reduced system or -1 (pinned).
     std::vector<int> dof_index;
     int free_dofs = 0;
-    // The fill-reducing ordering and symbolic factorisation depend only on the free dofs
-    // and the mesh, so they are kept across Newton iterations and steps.
     internal::SparseSpdSolver solver;
-    // Fixed sparsity pattern of the free-dof Hessian, and for every element entry (in the
-    // column-major order of its dense Hessian) the index into the value array, or -1 when
-    // a pinned dof is involved. Rebuilt when the pins change.
+    // Fixed pattern of the free-dof Hessian (elements, stitches, vertex blocks) with, for
+    // every element entry (column-major in its dense block), the index into the value array
+    // or -1 if a pinned dof is involved. Rebuilt when pins or stitches change.
     Eigen::SparseMatrix<double> pattern;
-    std::vector<int> face_slots, hinge_slots, diagonal_slots;
+    std::vector<int> face_slots, hinge_slots, stitch_slots, vertex_slots, diagonal_slots;
     bool pattern_ready = false;
+    // Extra 3x3 blocks between vertex pairs (a < b) for self-contact, kept across iterations
+    // so that the symbolic factorisation can be reused while no new pair appears.
+    std::set<std::pair<int, int>> contact_blocks;
+    Eigen::SparseMatrix<double> contact_pattern;  // free-dof, zeros at contact_blocks
+    bool analysed_with_contacts = false;
+
+    // Per-iteration state.
+    std::vector<VertexContact> contacts;  // one per free vertex
+    std::vector<FrictionContact> friction;  // lagged over the step
+    // Dynamic steps: contact planes, made when a vertex first comes within the thickness
+    // during the step (at its closest surface point) and kept until the step ends, so that
+    // the step's incremental potential changes only when a plane is added.
+    std::vector<int> plane_of_vertex;              // -1: none
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> planes;  // (point, normal)
+    std::vector<double> contact_energy;            // per vertex, scratch of potential()
+    std::vector<Eigen::Vector3d> contact_normal;   // per vertex gradient, scratch
+    double query_radius = 0;
+    Eigen::MatrixX3d step_start;          // x at the start of the step (friction, drag)
+    double step_dt = 0;                   // 0 in the static solve (no friction, no drag)
+    HessianMode hessian_mode = HessianMode::gauss_newton;  // of the elastic terms, this iteration
+
+    // Element buffers (filled in parallel, scattered serially for determinism).
+    std::vector<double> face_energy, hinge_energy;
+    std::vector<Vector9d> face_grad;
+    std::vector<Matrix9d> face_hess;
+    std::vector<Vector12d> hinge_grad;
+    std::vector<Matrix12d> hinge_hess;
 
     Impl() = default;
     // Copies carry the state, not the factorisation (used by the const forces()).
     Impl(const Impl& o)
         : mesh(o.mesh), material(o.material), options(o.options), x(o.x), v(o.v), mass(o.mass),
-          pinned(o.pinned), triangles(o.triangles), hinges(o.hinges), hinge_rests(o.hinge_rests),
-          k_stretch(o.k_stretch), bend_curves(o.bend_curves), dof_index(o.dof_index),
-          free_dofs(o.free_dofs) {}
+          area(o.area), pinned(o.pinned), triangles(o.triangles), hinges(o.hinges),
+          hinge_rests(o.hinge_rests), k_stretch(o.k_stretch), bend_curves(o.bend_curves),
+          obstacle(o.obstacle), stitches(o.stitches), stitch_rest(o.stitch_rest),
+          self_contact(o.self_contact), dof_index(o.dof_index), free_dofs(o.free_dofs) {}
 
     void renumber() {
         solver.reset();
         pattern_ready = false;
+        analysed_with_contacts = false;
+        contact_blocks.clear();
         dof_index.assign(static_cast<std::size_t>(3 * x.rows()), -1);
         free_dofs = 0;
         for (Eigen::Index i = 0; i < x.rows(); ++i)
             if (!pinned[static_cast<std::size_t>(i)])
                 for (int c = 0; c < 3; ++c) dof_index[static_cast<std::size_t>(3 * i + c)] = free_dofs++;
     }
+    int dof(int vertex, int c) const { return dof_index[static_cast<std::size_t>(3 * vertex + c)]; }
 
     Eigen::Matrix3d face_positions(const Eigen::MatrixX3d& p, int f) const {
         Eigen::Matrix3d xf;
@@ -123,242 +220,610 @@ struct Simulator::Impl {
     // refresh: its curvature dependence is integrated into the energy (BendingCurve).
     void refresh_stiffness(const Eigen::MatrixX3d& p) {
         k_stretch.resize(triangles.size());
-        for (int f = 0; f < mesh.face_count(); ++f)
+        parallel_range(mesh.face_count(), [&](int f) {
             k_stretch[static_cast<std::size_t>(f)] = stretching_stiffness(
                 material, green_strain(face_positions(p, f), triangles[static_cast<std::size_t>(f)]));
+        });
+    }
+
+    // ---- sparsity pattern -------------------------------------------------------------
+    static int slot_in(const Eigen::SparseMatrix<double>& m, int r, int c) {
+        const int* inner = m.innerIndexPtr();
+        const int* begin = inner + m.outerIndexPtr()[c];
+        const int* end = inner + m.outerIndexPtr()[c + 1];
+        const int* it = std::lower_bound(begin, end, r);
+        return (it != end && *it == r) ? static_cast<int>(it - inner) : -1;
+    }
+
+    void add_block_entries(std::vector<Eigen::Triplet<double>>& entries, const int* verts, int n) const {
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b)
+                for (int ca = 0; ca < 3; ++ca)
+                    for (int cb = 0; cb < 3; ++cb) {
+                        const int r = dof(verts[a], ca), c = dof(verts[b], cb);
+                        if (r >= 0 && c >= 0) entries.emplace_back(r, c, 0.0);
+                    }
+    }
+
+    void fill_slots(const int* verts, int n, int* out) const {
+        for (int b = 0; b < n; ++b)
+            for (int cb = 0; cb < 3; ++cb)
+                for (int a = 0; a < n; ++a)
+                    for (int ca = 0; ca < 3; ++ca) {
+                        const int r = dof(verts[a], ca), c = dof(verts[b], cb);
+                        out[(3 * b + cb) * 3 * n + 3 * a + ca] = (r >= 0 && c >= 0) ? slot_in(pattern, r, c) : -1;
+                    }
     }
 
     void build_pattern() {
         std::vector<Eigen::Triplet<double>> entries;
-        auto add = [&](const int* verts, int n) {
-            for (int a = 0; a < n; ++a)
-                for (int b = 0; b < n; ++b)
-                    for (int ca = 0; ca < 3; ++ca)
-                        for (int cb = 0; cb < 3; ++cb) {
-                            const int r = dof_index[static_cast<std::size_t>(3 * verts[a] + ca)];
-                            const int c = dof_index[static_cast<std::size_t>(3 * verts[b] + cb)];
-                            if (r >= 0 && c >= 0) entries.emplace_back(r, c, 0.0);
-                        }
-        };
         for (int f = 0; f < mesh.face_count(); ++f) {
             const int verts[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
-            add(verts, 3);
+            add_block_entries(entries, verts, 3);
         }
-        for (const Hinge& h : hinges) add(h.v.data(), 4);
-        for (int d = 0; d < free_dofs; ++d) entries.emplace_back(d, d, 0.0);
+        for (const Hinge& h : hinges) add_block_entries(entries, h.v.data(), 4);
+        for (const Stitch& st : stitches) {
+            const int verts[2] = {st.a, st.b};
+            add_block_entries(entries, verts, 2);
+        }
+        for (int i = 0; i < mesh.vertex_count(); ++i) add_block_entries(entries, &i, 1);
         pattern.resize(free_dofs, free_dofs);
         pattern.setFromTriplets(entries.begin(), entries.end());
         pattern.makeCompressed();
-        auto slot = [&](int r, int c) {
-            const int* inner = pattern.innerIndexPtr();
-            const int* begin = inner + pattern.outerIndexPtr()[c];
-            const int* end = inner + pattern.outerIndexPtr()[c + 1];
-            return static_cast<int>(std::lower_bound(begin, end, r) - inner);
-        };
-        auto fill = [&](const int* verts, int n, int* out) {
-            for (int b = 0; b < n; ++b)
-                for (int cb = 0; cb < 3; ++cb)
-                    for (int a = 0; a < n; ++a)
-                        for (int ca = 0; ca < 3; ++ca) {
-                            const int r = dof_index[static_cast<std::size_t>(3 * verts[a] + ca)];
-                            const int c = dof_index[static_cast<std::size_t>(3 * verts[b] + cb)];
-                            out[(3 * b + cb) * 3 * n + 3 * a + ca] = (r >= 0 && c >= 0) ? slot(r, c) : -1;
-                        }
-        };
         face_slots.assign(static_cast<std::size_t>(81 * mesh.face_count()), -1);
-        for (int f = 0; f < mesh.face_count(); ++f) {
+        parallel_range(mesh.face_count(), [&](int f) {
             const int verts[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
-            fill(verts, 3, face_slots.data() + 81 * f);
-        }
+            fill_slots(verts, 3, face_slots.data() + 81 * f);
+        });
         hinge_slots.assign(144 * hinges.size(), -1);
-        for (std::size_t h = 0; h < hinges.size(); ++h)
-            fill(hinges[h].v.data(), 4, hinge_slots.data() + 144 * h);
+        parallel_range(static_cast<int>(hinges.size()), [&](int h) {
+            fill_slots(hinges[static_cast<std::size_t>(h)].v.data(), 4,
+                       hinge_slots.data() + 144 * h);
+        });
+        stitch_slots.assign(36 * stitches.size(), -1);
+        for (std::size_t k = 0; k < stitches.size(); ++k) {
+            const int verts[2] = {stitches[k].a, stitches[k].b};
+            fill_slots(verts, 2, stitch_slots.data() + 36 * k);
+        }
+        vertex_slots.assign(static_cast<std::size_t>(9 * mesh.vertex_count()), -1);
+        for (int i = 0; i < mesh.vertex_count(); ++i) fill_slots(&i, 1, vertex_slots.data() + 9 * i);
         diagonal_slots.resize(static_cast<std::size_t>(free_dofs));
-        for (int d = 0; d < free_dofs; ++d) diagonal_slots[static_cast<std::size_t>(d)] = slot(d, d);
+        for (int d = 0; d < free_dofs; ++d) diagonal_slots[static_cast<std::size_t>(d)] = slot_in(pattern, d, d);
+        contact_pattern.resize(free_dofs, free_dofs);
+        contact_pattern.setZero();
+        contact_blocks.clear();
+        analysed_with_contacts = false;
+        solver.reset();
         pattern_ready = true;
     }
 
-    // Potential energy (elastic + gravity) with frozen stiffness; optionally the full
-    // gradient (3V) and, added into `values` (the value array of `pattern`), the free-dof
-    // Hessian.
-    double potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gradient, double* values) const {
+    // Adds the blocks the current self-contact pairs need; true if the set grew.
+    bool update_contact_blocks(const std::vector<internal::PairHessian>& pairs) {
+        bool grew = false;
+        for (const internal::PairHessian& ph : pairs)
+            for (int a = 0; a < 4; ++a)
+                for (int b = a + 1; b < 4; ++b) {
+                    int va = ph.pair.v[static_cast<std::size_t>(a)], vb = ph.pair.v[static_cast<std::size_t>(b)];
+                    if (va == vb || pinned[static_cast<std::size_t>(va)] || pinned[static_cast<std::size_t>(vb)]) continue;
+                    if (va > vb) std::swap(va, vb);
+                    grew |= contact_blocks.emplace(va, vb).second;
+                }
+        if (grew) {
+            std::vector<Eigen::Triplet<double>> entries;
+            for (const auto& [a, b] : contact_blocks) {
+                const int verts[2] = {a, b};
+                add_block_entries(entries, verts, 2);
+            }
+            contact_pattern.resize(free_dofs, free_dofs);
+            contact_pattern.setFromTriplets(entries.begin(), entries.end());
+            contact_pattern.makeCompressed();
+        }
+        return grew;
+    }
+
+    // ---- contact queries -------------------------------------------------------------
+    // Refreshes, for every free vertex, the closest obstacle point within the query radius
+    // and the lagged friction force.
+    void update_obstacle_contacts(const Eigen::MatrixX3d& p) {
+        contacts.clear();
+        if (!obstacle) return;
+        const double h = options.contact_thickness_m;
+        query_radius = h + std::max(2 * h, 0.01);
+        contacts.resize(static_cast<std::size_t>(p.rows()));
+        parallel_range(static_cast<int>(p.rows()), [&](int i) {
+            VertexContact& c = contacts[static_cast<std::size_t>(i)];
+            c.vertex = i;
+            if (pinned[static_cast<std::size_t>(i)]) return;
+            const ObstacleQuery q = obstacle->closest(p.row(i).transpose(), query_radius);
+            if (!q.found) return;
+            c.point = q.point;
+            c.normal = q.normal;
+            c.distance = q.signed_distance_m;
+            // Contact plane: through the closest point, along the direction to the vertex
+            // when it is well defined (so the plane is the true distance's tangent plane).
+            const Eigen::Vector3d d = p.row(i).transpose() - q.point;
+            if (d.norm() > 1e-9) c.normal = (q.signed_distance_m < 0 ? -d : d).normalized();
+            c.stiffness = options.contact_stiffness_n_per_m3 * area(i);
+        }, 64);
+        if (step_dt > 0) {
+            plane_of_vertex.resize(static_cast<std::size_t>(p.rows()), -1);
+            for (const VertexContact& c : contacts)
+                if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h &&
+                    plane_of_vertex[static_cast<std::size_t>(c.vertex)] < 0) {
+                    plane_of_vertex[static_cast<std::size_t>(c.vertex)] = static_cast<int>(planes.size());
+                    planes.emplace_back(c.point, c.normal);
+                }
+        }
+    }
+
+    // The lagged friction of a step: vertices within the thickness at the step's start, with
+    // their contact normal and penalty force there.
+    void prepare_friction(const Eigen::MatrixX3d& p) {
+        friction.clear();
+        if (!obstacle || options.obstacle_friction <= 0) return;
+        update_obstacle_contacts(p);
+        const double h = options.contact_thickness_m;
+        for (const VertexContact& c : contacts)
+            if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h)
+                friction.push_back({c.vertex, c.normal, c.stiffness * (h - c.distance)});
+    }
+
+    // Largest step fraction for which no free vertex can pass through the obstacle: a point
+    // at distance d from the surface cannot cross it by moving less than d, and a vertex that
+    // ends up to `allowed_depth_m` inside is still on the near side of any part of the body
+    // thicker than twice that, so the penalty (with its signed distance) pushes it back out.
+    // Vertices already inside are not limited.
+    double obstacle_step_bound(const Eigen::MatrixX3d& dx) const {
+        if (contacts.empty()) return 1.0;
+        const double allowed_depth_m = options.contact_thickness_m;
+        double alpha = 1.0;
+        for (const VertexContact& c : contacts) {
+            if (c.vertex < 0 || pinned[static_cast<std::size_t>(c.vertex)]) continue;
+            const double move = dx.row(c.vertex).norm();
+            if (move <= 0) continue;
+            const double free_distance = std::isfinite(c.distance) ? c.distance : query_radius;
+            if (free_distance <= 0) continue;
+            alpha = std::min(alpha, (0.9 * free_distance + allowed_depth_m) / move);
+        }
+        return alpha;
+    }
+
+    double friction_epsilon() const { return options.friction_slip_speed_m_per_s * step_dt; }
+
+    // ---- energy ------------------------------------------------------------------------
+    // Total energy of the frozen model at `p`; optionally the full gradient (3V) and, added
+    // into `values` (the value array of `pattern`) and `pair_hessians`, the Hessian.
+    double potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gradient, double* values,
+                     std::vector<internal::PairHessian>* pair_hessians = nullptr) {
+        const bool want_g = gradient != nullptr, want_h = values != nullptr;
+        const int nf = mesh.face_count();
+        const int nh = static_cast<int>(hinges.size());
+        face_energy.resize(static_cast<std::size_t>(nf));
+        hinge_energy.resize(static_cast<std::size_t>(nh));
+        if (want_g) {
+            face_grad.resize(static_cast<std::size_t>(nf));
+            hinge_grad.resize(static_cast<std::size_t>(nh));
+        }
+        if (want_h) {
+            face_hess.resize(static_cast<std::size_t>(nf));
+            hinge_hess.resize(static_cast<std::size_t>(nh));
+        }
+        parallel_range(nf, [&](int f) {
+            const auto fs = static_cast<std::size_t>(f);
+            face_energy[fs] = stretching_energy(face_positions(p, f), triangles[fs], k_stretch[fs],
+                                                want_g ? &face_grad[fs] : nullptr,
+                                                want_h ? &face_hess[fs] : nullptr,
+                                                hessian_mode);
+        }, 128);
+        // Bending's exact Hessian needs the dihedral angle's second derivatives (forward-mode
+        // numbers, ~4x the cost); its Gauss-Newton matrix is exact up to (θ−θ̄)∇²θ, small for
+        // cloth, so time steps use it while stretching (whose compressed elements are what
+        // make the projected Newton converge only linearly) stays exact.
+        const HessianMode bending_mode = hessian_mode == HessianMode::exact && std::getenv("DRAPE_BEND_EXACT") == nullptr ? HessianMode::gauss_newton : hessian_mode;
+        parallel_range(nh, [&](int h) {
+            const auto hs = static_cast<std::size_t>(h);
+            hinge_energy[hs] = bending_energy(hinge_positions(p, hinges[hs]), hinge_rests[hs],
+                                              bend_curves[hs], want_g ? &hinge_grad[hs] : nullptr,
+                                              want_h ? &hinge_hess[hs] : nullptr, bending_mode);
+        }, 128);
+
         double e = 0;
         if (gradient) gradient->setZero(3 * p.rows());
-        auto scatter = [&](const int* verts, int n, const double* g, const double* h,
-                           const int* slots) {
-            if (gradient)
+        auto scatter = [&](const int* verts, int n, const double* g, const double* hm, const int* slots) {
+            if (want_g)
                 for (int a = 0; a < n; ++a)
                     for (int ca = 0; ca < 3; ++ca) (*gradient)(3 * verts[a] + ca) += g[3 * a + ca];
-            if (values)
+            if (want_h)
                 for (int k = 0; k < 9 * n * n; ++k)
-                    if (slots[k] >= 0) values[slots[k]] += h[k];
+                    if (slots[k] >= 0) values[slots[k]] += hm[k];
         };
-        const bool derivatives = gradient || values;
-        Vector9d g9;
-        Matrix9d h9;
-        for (int f = 0; f < mesh.face_count(); ++f) {
+        for (int f = 0; f < nf; ++f) {
             const auto fs = static_cast<std::size_t>(f);
-            e += stretching_energy(face_positions(p, f), triangles[fs], k_stretch[fs],
-                                   gradient ? &g9 : nullptr, values ? &h9 : nullptr);
-            if (derivatives) {
+            e += face_energy[fs];
+            if (want_g || want_h) {
                 const int verts[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
-                scatter(verts, 3, g9.data(), h9.data(),
-                        values ? face_slots.data() + 81 * f : nullptr);
+                scatter(verts, 3, want_g ? face_grad[fs].data() : nullptr,
+                        want_h ? face_hess[fs].data() : nullptr,
+                        want_h ? face_slots.data() + 81 * f : nullptr);
             }
         }
-        Vector12d g12;
-        Matrix12d h12;
-        for (std::size_t h = 0; h < hinges.size(); ++h) {
-            e += bending_energy(hinge_positions(p, hinges[h]), hinge_rests[h], bend_curves[h],
-                                gradient ? &g12 : nullptr, values ? &h12 : nullptr,
-                                options.bending_hessian);
-            if (derivatives)
-                scatter(hinges[h].v.data(), 4, g12.data(), h12.data(),
-                        values ? hinge_slots.data() + 144 * h : nullptr);
+        for (int h = 0; h < nh; ++h) {
+            const auto hs = static_cast<std::size_t>(h);
+            e += hinge_energy[hs];
+            if (want_g || want_h)
+                scatter(hinges[hs].v.data(), 4, want_g ? hinge_grad[hs].data() : nullptr,
+                        want_h ? hinge_hess[hs].data() : nullptr,
+                        want_h ? hinge_slots.data() + 144 * h : nullptr);
         }
-        Eigen::MatrixX3d gg;
-        e += gravity_energy(p, mass, options.gravity_m_per_s2, gradient ? &gg : nullptr);
-        if (gradient)
-            for (Eigen::Index i = 0; i < p.rows(); ++i)
-                gradient->segment<3>(3 * i) += gg.row(i).transpose();
+        // Gravity.
+        for (Eigen::Index i = 0; i < p.rows(); ++i) {
+            e -= mass(i) * options.gravity_m_per_s2.dot(p.row(i).transpose());
+            if (want_g) gradient->segment<3>(3 * i) -= mass(i) * options.gravity_m_per_s2;
+        }
+        // Stitches.
+        Vector6d g6;
+        Matrix6d h6;
+        for (std::size_t k = 0; k < stitches.size(); ++k) {
+            const Stitch& st = stitches[k];
+            const double ks = options.stitch_stiffness_n_per_m2 * st.length_m;
+            e += stitch_energy(p.row(st.a).transpose(), p.row(st.b).transpose(), stitch_rest[k], ks,
+                               want_g ? &g6 : nullptr, want_h ? &h6 : nullptr);
+            const int verts[2] = {st.a, st.b};
+            if (want_g || want_h)
+                scatter(verts, 2, want_g ? g6.data() : nullptr, want_h ? h6.data() : nullptr,
+                        want_h ? stitch_slots.data() + 36 * k : nullptr);
+        }
+        // Obstacle contact: ½ k (h − d(x))² with d the true signed distance to the obstacle
+        // (queried here, also in line-search trials, so that Newton minimises one fixed
+        // energy); Gauss-Newton Hessian k ∇d∇dᵀ (drops −k(h−d)∇²d, which is negative).
+        Eigen::Vector3d g3, gf;
+        Eigen::Matrix3d h3, hf;
+        const double eps = friction_epsilon();
+        if (obstacle && step_dt > 0) {
+            // Dynamic step: the step's contact planes (exact quadratic energies).
+            for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(plane_of_vertex.size()); ++i) {
+                const int plane = plane_of_vertex[static_cast<std::size_t>(i)];
+                if (plane < 0) continue;
+                const int vi = static_cast<int>(i);
+                const auto& [point, normal] = planes[static_cast<std::size_t>(plane)];
+                const double ei = plane_contact_energy(p.row(i).transpose(), point, normal,
+                                                       options.contact_thickness_m,
+                                                       options.contact_stiffness_n_per_m3 * area(i),
+                                                       want_g ? &g3 : nullptr, want_h ? &h3 : nullptr);
+                if (ei <= 0) continue;
+                e += ei;
+                scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
+                        want_h ? vertex_slots.data() + 9 * i : nullptr);
+            }
+        } else if (obstacle) {
+            const double thickness = options.contact_thickness_m;
+            contact_energy.assign(static_cast<std::size_t>(p.rows()), 0.0);
+            contact_normal.resize(static_cast<std::size_t>(p.rows()));
+            parallel_range(static_cast<int>(p.rows()), [&](int i) {
+                if (pinned[static_cast<std::size_t>(i)]) return;
+                const Eigen::Vector3d xi = p.row(i).transpose();
+                const ObstacleQuery q = obstacle->closest(xi, thickness);
+                if (!q.found) return;
+                const Eigen::Vector3d d = xi - q.point;
+                Eigen::Vector3d n = q.normal;
+                if (d.norm() > 1e-12) n = (q.signed_distance_m < 0 ? -d : d).normalized();
+                const double gap = thickness - q.signed_distance_m;
+                const double k = options.contact_stiffness_n_per_m3 * area(i);
+                contact_energy[static_cast<std::size_t>(i)] = 0.5 * k * gap * gap;
+                contact_normal[static_cast<std::size_t>(i)] = -k * gap * n;  // gradient
+            }, 64);
+            for (Eigen::Index i = 0; i < p.rows(); ++i) {
+                const double ei = contact_energy[static_cast<std::size_t>(i)];
+                if (ei <= 0) continue;
+                e += ei;
+                const int vi = static_cast<int>(i);
+                g3 = contact_normal[static_cast<std::size_t>(i)];
+                if (want_h) {
+                    const double k = options.contact_stiffness_n_per_m3 * area(i);
+                    const Eigen::Vector3d n = g3.normalized();
+                    h3 = k * n * n.transpose();
+                }
+                scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
+                        want_h ? vertex_slots.data() + 9 * i : nullptr);
+            }
+        }
+        if (step_dt > 0)
+            for (const FrictionContact& c : friction) {
+                const int i = c.vertex;
+                e += friction_energy((p.row(i) - step_start.row(i)).transpose(), c.normal, c.normal_force,
+                                     options.obstacle_friction, eps, want_g ? &gf : nullptr,
+                                     want_h ? &hf : nullptr);
+                if (want_g || want_h)
+                    scatter(&i, 1, want_g ? gf.data() : nullptr, want_h ? hf.data() : nullptr,
+                            want_h ? vertex_slots.data() + 9 * i : nullptr);
+            }
+        // Self-contact.
+        if (options.self_contact && !self_contact.candidates().empty()) {
+            internal::SelfContactParams params{options.contact_thickness_m, self_contact_stiffness()};
+            e += self_contact.energy(p, params, gradient, want_h ? pair_hessians : nullptr);
+        }
+        // Air drag: c A/(2Δt) |x − x₀ − Δt w|², whose gradient is c A (v − w).
+        if (step_dt > 0 && options.air_drag_n_s_per_m3 > 0) {
+            for (Eigen::Index i = 0; i < p.rows(); ++i) {
+                const double c = options.air_drag_n_s_per_m3 * area(i) / step_dt;
+                const Eigen::Vector3d d = (p.row(i) - step_start.row(i)).transpose() - step_dt * options.wind_m_per_s;
+                e += 0.5 * c * d.squaredNorm();
+                if (want_g) gradient->segment<3>(3 * i) += c * d;
+                if (want_h)
+                    for (int k = 0; k < 3; ++k) {
+                        const int s = vertex_slots[static_cast<std::size_t>(9 * i + 4 * k)];
+                        if (s >= 0) values[s] += c;
+                    }
+            }
+        }
         return e;
     }
 
-    // One backward-Euler step of length h; on failure the state is left unchanged.
+    // Self-contact stiffness per pair: the contact pressure stiffness times a typical vertex
+    // area (pairs do not have an area of their own).
+    double self_contact_stiffness() const {
+        return options.contact_stiffness_n_per_m3 * (area.size() ? area.mean() : 0.0);
+    }
+
+    // Pairs closer than 2h in the pattern are neighbours within one layer (see
+    // SelfContact::set_rest_filter). Per-vertex pattern point: the first corner's; pieces:
+    // connected components of the faces.
+    void set_rest_filter() {
+        const int nv = mesh.vertex_count();
+        Eigen::MatrixX2d uv = Eigen::MatrixX2d::Zero(nv, 2);
+        std::vector<bool> seen(static_cast<std::size_t>(nv), false);
+        std::vector<int> parent(static_cast<std::size_t>(nv));
+        for (int i = 0; i < nv; ++i) parent[static_cast<std::size_t>(i)] = i;
+        auto find = [&](int i) {
+            while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+            return i;
+        };
+        for (int f = 0; f < mesh.face_count(); ++f)
+            for (int c = 0; c < 3; ++c) {
+                const int vtx = mesh.faces(f, c);
+                if (!seen[static_cast<std::size_t>(vtx)]) {
+                    uv.row(vtx) = mesh.pattern.row(mesh.pattern_faces(f, c));
+                    seen[static_cast<std::size_t>(vtx)] = true;
+                }
+                parent[static_cast<std::size_t>(find(vtx))] = find(mesh.faces(f, (c + 1) % 3));
+            }
+        std::vector<int> piece(static_cast<std::size_t>(nv));
+        for (int i = 0; i < nv; ++i) piece[static_cast<std::size_t>(i)] = find(i);
+        self_contact.set_rest_filter(uv, piece, 2 * options.contact_thickness_m);
+    }
+
+    double max_stitch_gap(const Eigen::MatrixX3d& p) const {
+        double gap = 0;
+        for (const Stitch& st : stitches) gap = std::max(gap, (p.row(st.a) - p.row(st.b)).norm());
+        return gap;
+    }
+
     StepSummary backward_euler(double h, int halvings_left);
+    StepSummary minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3d& target, double inertia_weight,
+                         double relative_tolerance);
+};
 
-    // Newton on E(p) = inertia_weight/2 Σ m_i |p_i − target_i|² + potential(p).
-    // inertia_weight = 1/h² for backward Euler, 0 for the static solve.
-    StepSummary minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3d& target, double inertia_weight) {
-        const auto t_start = Clock::now();
-        StepSummary s;
-        const double weight = mass.maxCoeff() * options.gravity_m_per_s2.norm();
-        s.tolerance_n = weight > 0 ? options.relative_tolerance * weight : 1e-12;
-        const Eigen::MatrixX3d p_start = p;
+// Newton on E(p) = inertia_weight/2 Σ m_i |p_i − target_i|² + potential(p).
+// inertia_weight = 1/h² for backward Euler, 0 for the static solve.
+StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3d& target,
+                                      double inertia_weight, double relative_tolerance) {
+    const auto t_start = Clock::now();
+    StepSummary s;
+    const double weight = mass.maxCoeff() * options.gravity_m_per_s2.norm();
+    s.tolerance_n = weight > 0 ? relative_tolerance * weight : 1e-12;
+    const Eigen::MatrixX3d p_start = p;
+    const double h = options.contact_thickness_m;
+    const bool use_self = options.self_contact;
+    std::vector<internal::PairHessian> pair_hessians;
+    double last_move = 0;
+    const double v_max = inertia_weight > 0 ? v.rowwise().norm().maxCoeff() : 0.0;
 
-        auto total = [&](const Eigen::MatrixX3d& q, Eigen::VectorXd* g,
-                         double* values) {
-            double e = potential(q, g, values);
-            if (inertia_weight > 0) {
-                const Eigen::MatrixX3d d = q - target;
-                e += 0.5 * inertia_weight * (mass.transpose() * d.rowwise().squaredNorm()).value();
-                if (g)
-                    for (Eigen::Index i = 0; i < q.rows(); ++i)
-                        g->segment<3>(3 * i) += inertia_weight * mass(i) * d.row(i).transpose();
-            }
-            return e;
-        };
-        auto free_inf_norm = [&](const Eigen::VectorXd& g) {
-            double n = 0;
-            for (std::size_t k = 0; k < dof_index.size(); ++k)
-                if (dof_index[k] >= 0) n = std::max(n, std::abs(g(static_cast<Eigen::Index>(k))));
-            return n;
-        };
+    auto total = [&](const Eigen::MatrixX3d& q, Eigen::VectorXd* g, double* values,
+                     std::vector<internal::PairHessian>* ph) {
+        double e = potential(q, g, values, ph);
+        if (inertia_weight > 0) {
+            const Eigen::MatrixX3d d = q - target;
+            e += 0.5 * inertia_weight * (mass.transpose() * d.rowwise().squaredNorm()).value();
+            if (g)
+                for (Eigen::Index i = 0; i < q.rows(); ++i)
+                    g->segment<3>(3 * i) += inertia_weight * mass(i) * d.row(i).transpose();
+        }
+        return e;
+    };
+    auto free_inf_norm = [&](const Eigen::VectorXd& g) {
+        double n = 0;
+        for (std::size_t k = 0; k < dof_index.size(); ++k)
+            if (dof_index[k] >= 0) n = std::max(n, std::abs(g(static_cast<Eigen::Index>(k))));
+        return n;
+    };
 
-        if (!pattern_ready) build_pattern();
-        Eigen::SparseMatrix<double> hessian = pattern;
-        Eigen::VectorXd g;
-        double shift = 0;  // Levenberg-style diagonal shift, × mass-like scale
-        const double mass_scale = mass.maxCoeff();
-        for (int it = 0;; ++it) {
-            auto t0 = Clock::now();
-            refresh_stiffness(p);
-            std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.0);
-            const double e = total(p, &g, hessian.valuePtr());
-            s.seconds_assembly += seconds_since(t0);
-            s.energy_j = e;
-            s.gradient_inf_norm_n = free_inf_norm(g);
-            s.newton_iterations = it;
-            if (!std::isfinite(e) || !g.allFinite()) {
-                p = p_start;
-                s.termination = StepTermination::non_finite;
-                s.message = "energy or gradient is not finite";
-                break;
-            }
-            if (s.gradient_inf_norm_n <= s.tolerance_n) {
-                s.termination = StepTermination::converged;
-                break;
-            }
-            if (it >= options.max_newton_iterations) {
-                s.termination = StepTermination::max_iterations;
-                break;
-            }
-            t0 = Clock::now();
-            Eigen::VectorXd rhs(free_dofs);
-            for (std::size_t k = 0; k < dof_index.size(); ++k)
-                if (dof_index[k] >= 0) rhs(dof_index[k]) = -g(static_cast<Eigen::Index>(k));
+    if (!pattern_ready) build_pattern();
+    Eigen::SparseMatrix<double> hessian = pattern;
+    Eigen::VectorXd g;
+    double shift = 0;  // Levenberg-style diagonal shift, × mass-like scale
+    const double mass_scale = mass.maxCoeff();
+    for (int it = 0;; ++it) {
+        auto t0 = Clock::now();
+        // Dynamic steps look the stretching table up once, at the step's start (like ArcSim's
+        // one linearised solve per step): with k frozen over the step the incremental
+        // potential is one fixed function and Newton converges quadratically, where
+        // re-freezing k every iteration can cycle between two strain states.
+        if (inertia_weight == 0 || it == 0) refresh_stiffness(p);
+        update_obstacle_contacts(p);
+        // Self-contact candidates within h + twice the expected motion of this iteration
+        // (the last step's, or the velocity's over the step): the energy ignores pairs
+        // beyond h, and the step bound below shortens any step that could bring an
+        // uncollected pair (farther than the radius now) within reach.
+        if (use_self) {
+            double expected = last_move;
+            if (it == 0) expected = step_dt > 0 ? v_max * step_dt : 0.0;
+            self_contact.find_candidates(p, h + 2 * std::min(expected, 4 * h) + 1e-9);
+        }
+        hessian_mode = inertia_weight > 0 ? options.step_hessian : options.static_hessian;
+        std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.0);
+        pair_hessians.clear();
+        const double e = total(p, &g, hessian.valuePtr(), &pair_hessians);
+        s.seconds_assembly += seconds_since(t0);
+        s.energy_j = e;
+        s.gradient_inf_norm_n = free_inf_norm(g);
+        s.newton_iterations = it;
+        s.self_contact_pairs = static_cast<int>(pair_hessians.size());
+        if (!std::isfinite(e) || !g.allFinite()) {
+            p = p_start;
+            s.termination = StepTermination::non_finite;
+            s.message = "energy or gradient is not finite";
+            break;
+        }
+        if (s.gradient_inf_norm_n <= s.tolerance_n) {
+            s.termination = StepTermination::converged;
+            break;
+        }
+        if (it >= options.max_newton_iterations) {
+            s.termination = StepTermination::max_iterations;
+            break;
+        }
+        if (options.on_iteration && !options.on_iteration(it, s.gradient_inf_norm_n)) {
+            s.termination = StepTermination::cancelled;
+            s.message = "cancelled by the caller";
+            break;
+        }
+        t0 = Clock::now();
+        Eigen::VectorXd rhs(free_dofs);
+        for (std::size_t k = 0; k < dof_index.size(); ++k)
+            if (dof_index[k] >= 0) rhs(dof_index[k]) = -g(static_cast<Eigen::Index>(k));
+        Eigen::SparseMatrix<double> full;
+        bool use_full = false;
+        // Inertia on the diagonal; self-contact blocks in a second matrix with their own
+        // (growing) pattern, summed into `full`.
+        auto add_inertia_and_pairs = [&]() {
             for (Eigen::Index i = 0; i < p.rows(); ++i)
                 for (int c = 0; c < 3; ++c) {
-                    const int d = dof_index[static_cast<std::size_t>(3 * i + c)];
-                    if (d >= 0)
-                        hessian.valuePtr()[diagonal_slots[static_cast<std::size_t>(d)]] +=
-                            inertia_weight * mass(i);
+                    const int d = dof(static_cast<int>(i), c);
+                    if (d >= 0) hessian.valuePtr()[diagonal_slots[static_cast<std::size_t>(d)]] += inertia_weight * mass(i);
                 }
-            Eigen::VectorXd step;
-            for (int attempt = 0; attempt < 12; ++attempt) {
-                Eigen::SparseMatrix<double> shifted;
-                if (shift > 0) {
-                    shifted = hessian;
-                    for (Eigen::Index i = 0; i < p.rows(); ++i)
-                        for (int c = 0; c < 3; ++c) {
-                            const int d = dof_index[static_cast<std::size_t>(3 * i + c)];
-                            if (d >= 0) shifted.coeffRef(d, d) += shift * mass(i) / mass_scale;
+            const bool has_pairs = !pair_hessians.empty();
+            if (has_pairs && update_contact_blocks(pair_hessians)) solver.reset();
+            if (has_pairs || analysed_with_contacts) {
+                Eigen::SparseMatrix<double> extra = contact_pattern;
+                std::fill(extra.valuePtr(), extra.valuePtr() + extra.nonZeros(), 0.0);
+                for (const internal::PairHessian& ph : pair_hessians)
+                    for (int a = 0; a < 4; ++a)
+                        for (int b = 0; b < 4; ++b) {
+                            const int va = ph.pair.v[static_cast<std::size_t>(a)], vb = ph.pair.v[static_cast<std::size_t>(b)];
+                            if (va == vb) continue;  // vertex blocks are in the main pattern
+                            for (int ca = 0; ca < 3; ++ca)
+                                for (int cb = 0; cb < 3; ++cb) {
+                                    const int r = dof(va, ca), c = dof(vb, cb);
+                                    if (r < 0 || c < 0) continue;
+                                    const int slot = slot_in(extra, r, c);
+                                    if (slot >= 0) extra.valuePtr()[slot] += ph.hessian(3 * a + ca, 3 * b + cb);
+                                }
                         }
-                }
-                const Eigen::SparseMatrix<double>& matrix = shift > 0 ? shifted : hessian;
-                if (solver.factorize(matrix)) {
-                    step = solver.solve(rhs);
-                    if (step.allFinite() && step.dot(rhs) > 0) break;
-                }
-                step.resize(0);
-                if (shift > 0) {
-                    shift *= 10;
-                } else {
-                    const Eigen::VectorXd diagonal = hessian.diagonal();
-                    shift = 1e-8 * diagonal.cwiseAbs().maxCoeff() + 1e-12;
-                }
+                // Same-vertex blocks of the pairs (a == b) go into the main pattern.
+                for (const internal::PairHessian& ph : pair_hessians)
+                    for (int a = 0; a < 4; ++a)
+                        for (int b = 0; b < 4; ++b) {
+                            const int va = ph.pair.v[static_cast<std::size_t>(a)];
+                            if (va != ph.pair.v[static_cast<std::size_t>(b)]) continue;
+                            for (int k = 0; k < 9; ++k) {
+                                const int slot = vertex_slots[static_cast<std::size_t>(9 * va + k)];
+                                if (slot >= 0)
+                                    hessian.valuePtr()[slot] += ph.hessian(3 * a + k % 3, 3 * b + k / 3);
+                            }
+                        }
+                full = hessian + extra;
+                if (!analysed_with_contacts) solver.reset();
+                analysed_with_contacts = true;
+            }
+            use_full = has_pairs || analysed_with_contacts;
+        };
+        add_inertia_and_pairs();
+        Eigen::VectorXd step;
+        for (int attempt = 0; attempt < 12; ++attempt) {
+            Eigen::SparseMatrix<double> shifted;
+            if (shift > 0) {
+                shifted = use_full ? full : hessian;
+                for (Eigen::Index i = 0; i < p.rows(); ++i)
+                    for (int c = 0; c < 3; ++c) {
+                        const int d = dof(static_cast<int>(i), c);
+                        if (d >= 0) shifted.coeffRef(d, d) += shift * mass(i) / mass_scale;
+                    }
+            }
+            const Eigen::SparseMatrix<double>& base = use_full ? full : hessian;
+            const Eigen::SparseMatrix<double>& matrix = shift > 0 ? shifted : base;
+            if (solver.factorize(matrix)) {
+                step = solver.solve(rhs);
+                if (step.allFinite() && step.dot(rhs) > 0) break;
+            }
+            step.resize(0);
+            if (hessian_mode == HessianMode::exact) {
+                // Indefinite: assemble the projected (PSD) element Hessians instead.
+                hessian_mode = HessianMode::projected_psd;
+                std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.0);
+                pair_hessians.clear();
+                Eigen::VectorXd unused;
+                total(p, &unused, hessian.valuePtr(), &pair_hessians);
+                add_inertia_and_pairs();
                 ++s.regularised_factorisations;
+                continue;
             }
-            s.seconds_solve += seconds_since(t0);
-            if (step.size() == 0) {
-                s.termination = StepTermination::line_search_failed;
-                s.message = "no positive-definite regularisation of the Hessian found";
-                break;
+            if (shift > 0) {
+                shift *= 10;
+            } else {
+                const Eigen::VectorXd diagonal = (use_full ? full : hessian).diagonal();
+                shift = 1e-8 * diagonal.cwiseAbs().maxCoeff() + 1e-12;
             }
-            shift /= 10;  // let it decay once things are well conditioned
-            if (shift < 1e-14) shift = 0;
+            ++s.regularised_factorisations;
+        }
+        s.seconds_solve += seconds_since(t0);
+        if (step.size() == 0) {
+            s.termination = StepTermination::line_search_failed;
+            s.message = "no positive-definite regularisation of the Hessian found";
+            break;
+        }
+        shift /= 10;  // let it decay once things are well conditioned
+        if (shift < 1e-14) shift = 0;
 
-            // Backtracking (Armijo) line search with the frozen stiffness.
-            Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(p.rows(), 3);
-            for (Eigen::Index i = 0; i < p.rows(); ++i)
-                for (int c = 0; c < 3; ++c) {
-                    const int d = dof_index[static_cast<std::size_t>(3 * i + c)];
-                    if (d >= 0) dx(i, c) = step(d);
-                }
-            const double slope = -step.dot(rhs);
-            double alpha = 1;
-            bool accepted = false;
-            t0 = Clock::now();
-            for (int k = 0; k <= options.max_line_search_halvings; ++k, alpha /= 2) {
-                const Eigen::MatrixX3d trial = p + alpha * dx;
-                const double et = total(trial, nullptr, nullptr);
-                if (std::isfinite(et) && et <= e + 1e-4 * alpha * slope) {
-                    p = trial;
-                    accepted = true;
-                    break;
-                }
+        // Backtracking (Armijo) line search on the frozen model, from the largest step that
+        // keeps contacts safe (no crossing of the obstacle or of another cloth layer).
+        Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(p.rows(), 3);
+        for (Eigen::Index i = 0; i < p.rows(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                const int d = dof(static_cast<int>(i), c);
+                if (d >= 0) dx(i, c) = step(d);
             }
-            s.seconds_assembly += seconds_since(t0);
-            if (!accepted) {
-                s.termination = StepTermination::line_search_failed;
-                s.message = "no energy decrease along the Newton direction";
+        double alpha = obstacle_step_bound(dx);
+        if (use_self) alpha = std::min(alpha, self_contact.max_safe_step(p, dx * alpha, 0.9) * alpha);
+        const double slope = -step.dot(rhs);
+        bool accepted = false;
+        t0 = Clock::now();
+        for (int k = 0; k <= options.max_line_search_halvings; ++k, alpha /= 2) {
+            const Eigen::MatrixX3d trial = p + alpha * dx;
+            const double et = total(trial, nullptr, nullptr, nullptr);
+            if (std::isfinite(et) && et <= e + 1e-4 * alpha * slope) {
+                p = trial;
+                last_move = alpha * dx.rowwise().norm().maxCoeff();
+                accepted = true;
                 break;
             }
         }
-        s.seconds_total = seconds_since(t_start);
-        return s;
+        s.seconds_assembly += seconds_since(t0);
+        if (std::getenv("DRAPE_DEBUG_NEWTON"))
+            std::fprintf(stderr, "  it %d |g| %.3g alpha %.3g bound %.3g e %.9g\n", it, s.gradient_inf_norm_n, alpha,
+                         obstacle_step_bound(dx), e);
+        if (!accepted) {
+            s.termination = StepTermination::line_search_failed;
+            s.message = "no energy decrease along the Newton direction";
+            break;
+        }
     }
-};
+    s.contacts = 0;
+    for (const VertexContact& c : contacts)
+        if (c.vertex >= 0 && c.distance < h) ++s.contacts;
+    s.max_stitch_gap_m = max_stitch_gap(p);
+    s.seconds_total = seconds_since(t_start);
+    return s;
+}
 
 Simulator::Simulator(ClothMesh mesh, Material material, SimulatorOptions options)
     : impl_(std::make_unique<Impl>()) {
@@ -369,10 +834,11 @@ Simulator::Simulator(ClothMesh mesh, Material material, SimulatorOptions options
     Impl& m = *impl_;
     m.mesh = std::move(mesh);
     m.material = material;
-    m.options = options;
+    m.options = std::move(options);
     m.x = m.mesh.positions;
     m.v = Eigen::MatrixX3d::Zero(m.x.rows(), 3);
     m.mass = vertex_masses(m.mesh, m.material);
+    m.area = m.mass / m.material.density_kg_per_m2;
     m.pinned.assign(static_cast<std::size_t>(m.x.rows()), false);
     for (int f = 0; f < m.mesh.face_count(); ++f) {
         Eigen::Vector2d u[3];
@@ -384,6 +850,8 @@ Simulator::Simulator(ClothMesh mesh, Material material, SimulatorOptions options
         m.hinge_rests.push_back(hinge_rest(m.mesh, h));
         m.bend_curves.push_back(bending_curve(m.material, m.hinge_rests.back()));
     }
+    m.self_contact = internal::SelfContact(m.mesh.faces, m.mesh.vertex_count());
+    m.set_rest_filter();
     m.renumber();
 }
 
@@ -408,6 +876,66 @@ void Simulator::set_pinned_position(int vertex, const Eigen::Vector3d& position_
 
 const std::vector<bool>& Simulator::pinned() const { return impl_->pinned; }
 
+void Simulator::set_obstacle(Obstacle obstacle) { impl_->obstacle = std::move(obstacle); }
+
+void Simulator::move_obstacle(const Eigen::MatrixX3d& positions_m) {
+    require(impl_->obstacle.has_value(), "Simulator::move_obstacle: there is no obstacle");
+    impl_->obstacle->set_positions(positions_m);
+}
+
+void Simulator::clear_obstacle() { impl_->obstacle.reset(); }
+
+const Obstacle* Simulator::obstacle() const {
+    return impl_->obstacle ? &*impl_->obstacle : nullptr;
+}
+
+void Simulator::set_stitches(const std::vector<Stitch>& stitches) {
+    Impl& m = *impl_;
+    const int n = m.mesh.vertex_count();
+    for (std::size_t k = 0; k < stitches.size(); ++k) {
+        const Stitch& s = stitches[k];
+        require(s.a >= 0 && s.a < n && s.b >= 0 && s.b < n, "Simulator::set_stitches: stitch ", k,
+                " joins vertices (", s.a, ", ", s.b, "), out of range [0, ", n, ")");
+        require(s.a != s.b, "Simulator::set_stitches: stitch ", k, " joins vertex ", s.a, " to itself");
+        require(std::isfinite(s.length_m) && s.length_m > 0, "Simulator::set_stitches: stitch ", k,
+                " has length_m = ", s.length_m, ", must be > 0");
+    }
+    m.stitches = stitches;
+    m.stitch_rest.resize(stitches.size());
+    std::vector<std::pair<int, int>> excluded;
+    for (std::size_t k = 0; k < stitches.size(); ++k) {
+        m.stitch_rest[k] = (m.x.row(stitches[k].a) - m.x.row(stitches[k].b)).norm();
+        excluded.emplace_back(stitches[k].a, stitches[k].b);
+    }
+    m.self_contact = internal::SelfContact(m.mesh.faces, n, excluded);
+    m.set_rest_filter();
+    m.pattern_ready = false;
+    m.solver.reset();
+}
+
+const std::vector<Stitch>& Simulator::stitches() const { return impl_->stitches; }
+
+ContactReport Simulator::contact_report() const {
+    const Impl& m = *impl_;
+    ContactReport r;
+    r.min_obstacle_distance_m = std::numeric_limits<double>::infinity();
+    if (m.obstacle) {
+        for (Eigen::Index i = 0; i < m.x.rows(); ++i) {
+            const ObstacleQuery q = m.obstacle->closest(m.x.row(i).transpose(),
+                                                        std::numeric_limits<double>::infinity());
+            if (!q.found) continue;
+            r.min_obstacle_distance_m = std::min(r.min_obstacle_distance_m, q.signed_distance_m);
+            if (q.signed_distance_m < 0) {
+                ++r.vertices_inside;
+                r.max_penetration_m = std::max(r.max_penetration_m, -q.signed_distance_m);
+            }
+        }
+    }
+    r.max_stitch_gap_m = m.max_stitch_gap(m.x);
+    r.self_intersections = count_self_intersections(m.x, m.mesh.faces);
+    return r;
+}
+
 namespace {
 
 // Sums the counters of `part` into `total` (termination/energy/norms come from the last part).
@@ -421,6 +949,9 @@ void accumulate(StepSummary& total, const StepSummary& part) {
     total.gradient_inf_norm_n = part.gradient_inf_norm_n;
     total.tolerance_n = part.tolerance_n;
     total.energy_j = part.energy_j;
+    total.contacts = part.contacts;
+    total.self_contact_pairs = part.self_contact_pairs;
+    total.max_stitch_gap_m = part.max_stitch_gap_m;
 }
 
 }  // namespace
@@ -438,14 +969,26 @@ StepSummary Simulator::Impl::backward_euler(double h, int halvings_left) {
     Eigen::MatrixX3d target = m.x + h * m.v;
     for (std::size_t i = 0; i < m.pinned.size(); ++i)
         if (m.pinned[i]) target.row(static_cast<Eigen::Index>(i)) = m.x.row(static_cast<Eigen::Index>(i));
-    Eigen::MatrixX3d p = target;  // inertial prediction as the initial guess
-    StepSummary s = m.minimise(p, target, 1 / (h * h));
+    // Open seams close at the closing speed; the rest lengths only shrink.
+    const std::vector<double> rest_before = m.stitch_rest;
+    for (double& r : m.stitch_rest) r = std::max(0.0, r - m.options.seam_closing_speed_m_per_s * h);
+    m.step_start = m.x;
+    m.step_dt = h;
+    m.planes.clear();
+    m.plane_of_vertex.assign(static_cast<std::size_t>(m.x.rows()), -1);
+    m.prepare_friction(m.x);
+    // Start from the current positions: the inertial prediction could jump through the
+    // obstacle or another layer, while every Newton step from here is kept collision-safe.
+    Eigen::MatrixX3d p = m.x;
+    StepSummary s = m.minimise(p, target, 1 / (h * h), m.options.step_relative_tolerance);
+    m.step_dt = 0;
     if (s.usable()) {
         m.v = (p - m.x) / h;
         m.x = p;
         return s;
     }
-    if (halvings_left == 0) return s;
+    m.stitch_rest = rest_before;
+    if (halvings_left == 0 || s.termination == StepTermination::cancelled) return s;
     // Retry as two half steps from the unchanged state.
     const Eigen::MatrixX3d x0 = m.x, v0 = m.v;
     StepSummary total = s;
@@ -457,6 +1000,7 @@ StepSummary Simulator::Impl::backward_euler(double h, int halvings_left) {
         if (!part.usable()) {
             m.x = x0;
             m.v = v0;
+            m.stitch_rest = rest_before;
             total.message = "failed even after halving the step: " + part.message;
             return total;
         }
@@ -468,7 +1012,10 @@ StepSummary Simulator::Impl::backward_euler(double h, int halvings_left) {
 StepSummary Simulator::solve_static() {
     Impl& m = *impl_;
     Eigen::MatrixX3d p = m.x;
-    StepSummary s = m.minimise(p, m.x, 0);
+    std::fill(m.stitch_rest.begin(), m.stitch_rest.end(), 0.0);
+    m.step_dt = 0;
+    m.friction.clear();
+    StepSummary s = m.minimise(p, m.x, 0, m.options.relative_tolerance);
     if (s.termination != StepTermination::non_finite) {
         m.x = p;
         m.v.setZero();
@@ -501,11 +1048,15 @@ const Material& Simulator::material() const { return impl_->material; }
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
 
 Eigen::MatrixX3d Simulator::forces() const {
-    Impl copy_free = Impl(*impl_);  // refresh_stiffness mutates the frozen stiffness cache
-    copy_free.refresh_stiffness(copy_free.x);
+    Impl copy = Impl(*impl_);  // refresh_stiffness mutates the frozen stiffness cache
+    copy.refresh_stiffness(copy.x);
+    copy.contacts.clear();
     Eigen::VectorXd g;
-    copy_free.potential(copy_free.x, &g, nullptr);
-    Eigen::MatrixX3d f(copy_free.x.rows(), 3);
+    const bool self = copy.options.self_contact;
+    copy.options.self_contact = false;
+    copy.potential(copy.x, &g, nullptr);
+    copy.options.self_contact = self;
+    Eigen::MatrixX3d f(copy.x.rows(), 3);
     for (Eigen::Index i = 0; i < f.rows(); ++i) f.row(i) = -g.segment<3>(3 * i).transpose();
     return f;
 }

@@ -17,7 +17,8 @@ struct SparseSpdSolver::Impl {
     bool analysed = false;
 };
 
-SparseSpdSolver::SparseSpdSolver() : impl_(std::make_unique<Impl>()) {}
+
+SparseSpdSolver::SparseSpdSolver() { reset(); }
 SparseSpdSolver::~SparseSpdSolver() = default;
 SparseSpdSolver::SparseSpdSolver(SparseSpdSolver&&) noexcept = default;
 SparseSpdSolver& SparseSpdSolver::operator=(SparseSpdSolver&&) noexcept = default;
@@ -25,6 +26,10 @@ SparseSpdSolver& SparseSpdSolver::operator=(SparseSpdSolver&&) noexcept = defaul
 void SparseSpdSolver::reset() {
     // A fresh solver object: CHOLMOD keeps its symbolic factor inside.
     impl_ = std::make_unique<Impl>();
+#ifdef DRAPE_CLOTH_HAVE_CHOLMOD
+    // An indefinite matrix is an expected outcome (the caller falls back): no printing.
+    impl_->solver.cholmod().print = 0;
+#endif
 }
 
 bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& m) {

@@ -4,6 +4,8 @@
 
 #include "psd_projection.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 
 namespace drape::cloth {
@@ -69,17 +71,29 @@ double stretching_energy(const Eigen::Matrix3d& x, const TriangleRest& rest,
         for (int i = 0; i < 3; ++i) gradient->segment<3>(3 * i) = a * p * shape.col(i);
 
     if (hessian) {
+        // Gauss-Newton split: material part (F ∂S/∂G F, PSD when ψ is convex in G) plus the
+        // geometric part ∇Nᵢᵀ S ∇Nⱼ I₃, made PSD by clamping S's negative eigenvalues (the
+        // compressed directions) — no 9 x 9 eigen-decomposition.
+        const bool convex = k.k_uu >= 0 && k.k_vv >= 0 && k.k_shear >= 0 &&
+                            k.k_uu * k.k_vv >= k.k_uv * k.k_uv;
+        const bool gauss_newton = mode == HessianMode::gauss_newton && convex;
+        Eigen::Matrix2d s_geo = s;
+        if (gauss_newton) {
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(s);
+            s_geo = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() *
+                    eig.eigenvectors().transpose();
+        }
         for (int j = 0; j < 3; ++j)
             for (int c = 0; c < 3; ++c) {
                 Eigen::Matrix<double, 3, 2> df = Eigen::Matrix<double, 3, 2>::Zero();
                 df.row(c) = shape.col(j).transpose();
                 const Eigen::Matrix2d dg = 0.5 * (df.transpose() * f + f.transpose() * df);
-                const Eigen::Matrix<double, 3, 2> dp = df * s + f * stress(dg, k);
+                const Eigen::Matrix<double, 3, 2> dp = df * s_geo + f * stress(dg, k);
                 for (int i = 0; i < 3; ++i)
                     hessian->block<3, 1>(3 * i, 3 * j + c) = a * dp * shape.col(i);
             }
         *hessian = 0.5 * (*hessian + hessian->transpose()).eval();
-        if (mode != HessianMode::exact) internal::project_psd(*hessian);
+        if (mode != HessianMode::exact && !gauss_newton) internal::project_psd(*hessian);
     }
     return a * psi;
 }

@@ -25,7 +25,9 @@ enum class HessianMode {
     exact,          ///< the true second derivative (may be indefinite)
     projected_psd,  ///< the true Hessian with negative eigenvalues clamped to 0 (for Newton)
     /// A cheaper PSD approximation where the energy has one (bending: 2c ∇θ∇θᵀ, dropping
-    /// the (θ−θ̄)∇²θ term, which is small near the rest angle); energies without one
+    /// the (θ−θ̄)∇²θ term, which is small near the rest angle; stretching: the material
+    /// part plus the geometric part with the stress's negative eigenvalues clamped to 0,
+    /// when the stiffness is convex, else the projected Hessian); energies without one
     /// return the projected Hessian.
     gauss_newton,
 };

@@ -1,16 +1,21 @@
 // The implicit cloth simulator: backward Euler written as the minimisation of the
 // incremental potential, solved by Newton's method with a backtracking line search on a
-// sparse Cholesky (LDLᵀ) factorisation; and a quasi-static mode that minimises the
-// potential energy directly. First version (issue 3): stretching, bending, gravity and
-// pinned vertices. Not yet: body contact, self-contact, seams, friction, air drag.
+// sparse Cholesky factorisation (CHOLMOD); and a quasi-static mode that minimises the
+// potential energy directly. Terms: anisotropic stretching and curvature-dependent bending
+// (Wang et al. 2011 tables), gravity, air drag and wind, body contact with Coulomb
+// friction against a moving obstacle mesh, self-contact, seam stitches, pinned vertices
+// with prescribed motion. See docs/cloth.md.
 #pragma once
 
 #include <drape/cloth/cloth_mesh.hpp>
 #include <drape/cloth/energies.hpp>
 #include <drape/cloth/material.hpp>
+#include <drape/cloth/obstacle.hpp>
 
 #include <Eigen/Core>
 
+#include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,8 +33,48 @@ struct SimulatorOptions {
     /// A failed step (line search failure or NaN) is retried as two half steps, recursively,
     /// at most this many levels deep (so down to time_step_s / 2^max_step_halvings).
     int max_step_halvings = 3;
-    /// Newton matrix of the bending terms: gauss_newton (cheap, PSD) or projected_psd.
-    HessianMode bending_hessian = HessianMode::gauss_newton;
+    /// Newton tolerance of dynamic steps (same meaning as relative_tolerance, which the
+    /// static solve uses): a time step need not be solved to machine precision.
+    double step_relative_tolerance = 1e-2;
+    /// Newton matrix of the elastic terms in time steps. `exact`: with the inertia term the
+    /// system is almost always positive definite and Newton converges quadratically; when
+    /// the factorisation finds it indefinite, that iteration falls back to projected_psd.
+    HessianMode step_hessian = HessianMode::exact;
+    /// Newton matrix of the elastic terms in solve_static() (no inertia): gauss_newton
+    /// (cheap, PSD; linear convergence where the cloth is compressed) or projected_psd.
+    HessianMode static_hessian = HessianMode::gauss_newton;
+
+    // ---- contact ----
+    /// Cloth–obstacle and cloth–cloth contact thickness h (m): a vertex is pushed back while
+    /// it is closer than h to the obstacle surface or to another part of the cloth.
+    double contact_thickness_m = 5e-3;
+    /// Penalty stiffness per unit vertex area (N/m³): vertex i gets k_i = this × A_i, so the
+    /// penetration into the thickness layer is pressure / this, independent of resolution.
+    double contact_stiffness_n_per_m3 = 1e6;
+    double obstacle_friction = 0.3;  ///< Coulomb μ between cloth and obstacle, >= 0
+    double cloth_friction = 0.6;     ///< Coulomb μ between cloth layers (self-contact), >= 0
+    /// Friction is static-like below a slip speed of this (m/s); ε = this × Δt.
+    double friction_slip_speed_m_per_s = 1e-3;
+    bool self_contact = true;        ///< cloth–cloth repulsion (vertex–face and edge–edge)
+
+    // ---- seams ----
+    /// Stitch stiffness per unit seam length (N/m²): stitch s gets k_s = this × l_s with l_s
+    /// the seam length it represents, so the seam gap is tension / this (1e6: 0.05 mm at
+    /// 50 N/m).
+    double stitch_stiffness_n_per_m2 = 1e6;
+    /// Open stitches are pulled closed by shrinking their rest length at this speed (m/s);
+    /// closed ones are held at zero length.
+    double seam_closing_speed_m_per_s = 0.5;
+
+    // ---- air ----
+    /// Linear air drag per unit area (N·s/m³): force −c A_i (v_i − wind). 0 = none.
+    double air_drag_n_s_per_m3 = 0;
+    Eigen::Vector3d wind_m_per_s = Eigen::Vector3d::Zero();
+
+    /// Called after every Newton iteration with (iteration, |gradient|inf in N); return false
+    /// to cancel (the step/solve ends with StepTermination::cancelled). May be empty.
+    std::function<bool(int, double)> on_iteration;
+
     bool is_valid(std::string* why = nullptr) const;
 };
 
@@ -38,6 +83,7 @@ enum class StepTermination {
     max_iterations,      ///< Newton ran out of iterations; state is the last iterate
     line_search_failed,  ///< no decrease along the Newton direction; state is the last iterate
     non_finite,          ///< a NaN or infinity appeared; the state was restored
+    cancelled,           ///< on_iteration returned false; state is the last iterate
 };
 
 struct StepSummary {
@@ -46,6 +92,9 @@ struct StepSummary {
     int newton_iterations = 0;
     int regularised_factorisations = 0;  ///< times the Hessian needed a diagonal shift
     int substeps = 1;                    ///< > 1 when the step was split by halving
+    int contacts = 0;                    ///< vertices within the thickness of the obstacle
+    int self_contact_pairs = 0;          ///< active cloth–cloth pairs at the last iteration
+    double max_stitch_gap_m = 0;         ///< at the returned state
     double gradient_inf_norm_n = 0;      ///< at the returned state, free vertices only
     double tolerance_n = 0;              ///< the absolute tolerance that was used
     double energy_j = 0;                 ///< incremental potential (or potential, static)
@@ -58,6 +107,22 @@ struct StepSummary {
                termination == StepTermination::max_iterations;
     }
     std::string brief_report() const;
+};
+
+/// Geometric checks of a state (what the acceptance criteria measure).
+struct ContactReport {
+    double max_penetration_m = 0;   ///< deepest cloth vertex inside the obstacle (>= 0)
+    int vertices_inside = 0;        ///< cloth vertices with negative signed distance
+    double min_obstacle_distance_m = 0;  ///< smallest signed distance (inf without obstacle)
+    double max_stitch_gap_m = 0;    ///< largest |xa − xb| over the stitches
+    int self_intersections = 0;     ///< intersecting pairs of non-adjacent cloth triangles
+};
+
+/// A stitch of a seam: vertices a and b are pulled together and held.
+struct Stitch {
+    int a = -1;
+    int b = -1;
+    double length_m = 0;  ///< seam length this stitch stands for (for its stiffness), > 0
 };
 
 /// A piece of cloth in time. Owns its state; distinct simulators may run on distinct threads.
@@ -78,6 +143,25 @@ public:
     /// or the position is not finite.
     void set_pinned_position(int vertex, const Eigen::Vector3d& position_m);
     const std::vector<bool>& pinned() const;
+
+    /// Sets the obstacle (the body) the cloth collides with; replaces any previous one.
+    void set_obstacle(Obstacle obstacle);
+    /// Moves the obstacle's vertices (same faces) before the next step, e.g. to animate the
+    /// body; cloth left inside is pushed out by the contact penalty.
+    /// 	hrow drape::InvalidInput if there is no obstacle or the shape differs.
+    void move_obstacle(const Eigen::MatrixX3d& positions_m);
+    void clear_obstacle();
+    const Obstacle* obstacle() const;  ///< null when none
+
+    /// Sets the seam stitches (replacing previous ones). Open stitches close at
+    /// options.seam_closing_speed_m_per_s during steps; solve_static() holds them at zero.
+    /// Cloth–cloth contact between a stitch's two sides is ignored.
+    /// 	hrow drape::InvalidInput if an index is out of range, a == b or length <= 0.
+    void set_stitches(const std::vector<Stitch>& stitches);
+    const std::vector<Stitch>& stitches() const;
+
+    /// Penetration, stitch gaps and self-intersections of the current state.
+    ContactReport contact_report() const;
 
     /// One backward-Euler step of options.time_step_s; a failed solve is retried as two half
     /// steps (see max_step_halvings). If it still fails the state is unchanged and the

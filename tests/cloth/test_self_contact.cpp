@@ -1,0 +1,452 @@
+// Self-contact: exact distances, finite-difference checks of the pair penalty in every
+// closest-feature regime, the broad phase against brute force, and the step bound.
+#include <drape/cloth/intersections.hpp>
+#include <drape/core/errors.hpp>
+
+// The self-contact API is private to libcloth (namespace internal).
+#include "../../libcloth/src/self_contact.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "folded_sheet_fixture.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+
+using namespace drape::cloth;
+using namespace drape::cloth::internal;
+
+namespace {
+
+using Mat34 = Eigen::Matrix<double, 3, 4>;
+using Regime = DistanceRegime::Type;
+using Kind = ContactPair::Kind;
+
+Mat34 to_cols(const Vector12d& v) { return Eigen::Map<const Mat34>(v.data()); }
+Vector12d to_vec(const Mat34& x) { return Eigen::Map<const Vector12d>(x.data()); }
+
+double relative_error(const Eigen::MatrixXd& fd, const Eigen::MatrixXd& analytic) {
+    return (fd - analytic).norm() / std::max(analytic.norm(), 1e-300);
+}
+
+// Brute-force distances by dense sampling of the parameter domains.
+double sampled_point_triangle(const Mat34& x, int n) {
+    double best = 1e300;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j) {
+            const double u = double(i) / n, v = double(j) / n;
+            const Eigen::Vector3d y = x.col(1) + u * (x.col(2) - x.col(1)) + v * (x.col(3) - x.col(1));
+            best = std::min(best, (x.col(0) - y).norm());
+        }
+    return best;
+}
+
+double sampled_segment_segment(const Mat34& x, int n) {
+    double best = 1e300;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+            const double s = double(i) / n, t = double(j) / n;
+            const Eigen::Vector3d a = x.col(0) + s * (x.col(1) - x.col(0));
+            const Eigen::Vector3d b = x.col(2) + t * (x.col(3) - x.col(2));
+            best = std::min(best, (a - b).norm());
+        }
+    return best;
+}
+
+double diameter(const Mat34& x) {
+    double d = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) d = std::max(d, (x.col(i) - x.col(j)).norm());
+    return d;
+}
+
+std::string regime_name(Kind kind, const DistanceRegime& r) {
+    std::string s = kind == Kind::vertex_triangle ? "VT/" : "EE/";
+    switch (r.type) {
+        case Regime::point_point: s += "point_point"; break;
+        case Regime::point_edge: s += "point_edge"; break;
+        case Regime::point_plane: s += "point_plane"; break;
+        case Regime::edge_edge: s += "edge_edge"; break;
+    }
+    for (int i : r.idx) s += "," + std::to_string(i);
+    return s;
+}
+
+// Central-difference gradient of the pair energy and Hessian (difference of gradients).
+void check_pair_derivatives(Kind kind, const Mat34& x, const SelfContactParams& params) {
+    Vector12d g;
+    Matrix12d hess;
+    pair_energy(kind, x, params, &g, &hess, HessianMode::exact);
+    const Vector12d x0 = to_vec(x);
+    const double step = 1e-8;
+    Vector12d g_fd;
+    Matrix12d h_fd;
+    for (int i = 0; i < 12; ++i) {
+        Vector12d a = x0, b = x0;
+        a(i) += step;
+        b(i) -= step;
+        g_fd(i) = (pair_energy(kind, to_cols(a), params) - pair_energy(kind, to_cols(b), params)) /
+                  (2 * step);
+        Vector12d ga, gb;
+        pair_energy(kind, to_cols(a), params, &ga);
+        pair_energy(kind, to_cols(b), params, &gb);
+        h_fd.col(i) = (ga - gb) / (2 * step);
+    }
+    INFO("gradient " << g.transpose() << "\nfd " << g_fd.transpose());
+    CHECK(relative_error(g_fd, g) < 1e-5);
+    CHECK(relative_error(h_fd, hess) < 1e-4);
+    // The projected Hessian is PSD and the Gauss–Newton one is k ∇d ∇dᵀ.
+    Matrix12d projected, gauss_newton;
+    pair_energy(kind, x, params, nullptr, &projected, HessianMode::projected_psd);
+    pair_energy(kind, x, params, nullptr, &gauss_newton, HessianMode::gauss_newton);
+    Eigen::SelfAdjointEigenSolver<Matrix12d> eig(projected);
+    CHECK(eig.eigenvalues().minCoeff() > -1e-8 * std::max(1.0, projected.norm()));
+    const double gn = g.squaredNorm() / (params.stiffness_n_per_m *
+                                         std::pow(params.thickness_m -
+                                                      std::sqrt(pair_distance_squared(kind, x)),
+                                                  2));
+    CHECK(gauss_newton.trace() == Approx(gn).epsilon(1e-9));
+}
+
+// Folded sheet of the tests: 1 m / n grid, layers `gap` apart.
+ClothMesh test_fold(int n, double size, double gap, double noise, unsigned seed) {
+    ClothMesh mesh = test::folded_sheet(n, size, gap, 0.55 * size);
+    test::jitter(mesh.positions, noise, seed);
+    return mesh;
+}
+
+// All admissible pairs closer than `radius` by O(n²) enumeration, in SelfContact's order.
+std::vector<ContactPair> brute_force_pairs(const SelfContact& sc, const Eigen::MatrixX3d& p,
+                                           const Eigen::MatrixX3i& faces, double radius,
+                                           const std::vector<std::pair<int, int>>& excluded) {
+    auto excl = [&](int a, int b) {
+        if (a == b) return true;
+        for (auto [i, j] : excluded)
+            if ((i == a && j == b) || (i == b && j == a)) return true;
+        return false;
+    };
+    std::vector<ContactPair> out;
+    for (int v = 0; v < p.rows(); ++v)
+        for (int f = 0; f < faces.rows(); ++f) {
+            const int t0 = faces(f, 0), t1 = faces(f, 1), t2 = faces(f, 2);
+            if (excl(v, t0) || excl(v, t1) || excl(v, t2)) continue;
+            if (point_triangle_distance_squared(p.row(v), p.row(t0), p.row(t1), p.row(t2)) <
+                radius * radius)
+                out.push_back({Kind::vertex_triangle, {v, t0, t1, t2}});
+        }
+    const auto& edges = sc.edges();
+    for (std::size_t e = 0; e < edges.size(); ++e)
+        for (std::size_t o = e + 1; o < edges.size(); ++o) {
+            const int a0 = edges[e][0], a1 = edges[e][1], b0 = edges[o][0], b1 = edges[o][1];
+            if (excl(a0, b0) || excl(a0, b1) || excl(a1, b0) || excl(a1, b1)) continue;
+            if (segment_segment_distance_squared(p.row(a0), p.row(a1), p.row(b0), p.row(b1)) <
+                radius * radius)
+                out.push_back({Kind::edge_edge, {a0, a1, b0, b1}});
+        }
+    return out;
+}
+
+bool same_pairs(const std::vector<ContactPair>& a, const std::vector<ContactPair>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].kind != b[i].kind || a[i].v != b[i].v) return false;
+    return true;
+}
+
+// Minimum distance over every admissible pair (not only candidates), brute force.
+double min_pair_distance(const SelfContact& sc, const Eigen::MatrixX3d& p,
+                         const Eigen::MatrixX3i& faces) {
+    const double big = 1e3;
+    double best = 1e300;
+    for (const ContactPair& pair : brute_force_pairs(sc, p, faces, big, {})) {
+        Mat34 x;
+        for (int c = 0; c < 4; ++c) x.col(c) = p.row(pair.v[c]).transpose();
+        best = std::min(best, std::sqrt(pair_distance_squared(pair.kind, x)));
+    }
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("self-contact distances match dense sampling", "[cloth][self_contact]") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    for (int trial = 0; trial < 150; ++trial) {
+        Mat34 x;
+        for (int c = 0; c < 4; ++c) x.col(c) = Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        const int n = 400;
+        const double vt = std::sqrt(pair_distance_squared(Kind::vertex_triangle, x));
+        const double vt_sampled = sampled_point_triangle(x, n);
+        const double ee = std::sqrt(pair_distance_squared(Kind::edge_edge, x));
+        const double ee_sampled = sampled_segment_segment(x, n);
+        // Exact <= any sample; the nearest sample is within one grid step of the optimum.
+        CHECK(vt <= vt_sampled + 1e-12);
+        CHECK(vt_sampled - vt <= 2.0 * diameter(x) / n);
+        CHECK(ee <= ee_sampled + 1e-12);
+        CHECK(ee_sampled - ee <= 2.0 * diameter(x) / n);
+        // The regime formula reproduces the distance.
+        for (Kind kind : {Kind::vertex_triangle, Kind::edge_edge}) {
+            DistanceRegime r;
+            const double d2 = pair_distance_squared(kind, x, &r);
+            CHECK(regime_distance_squared(r, x, nullptr, nullptr) ==
+                  Approx(d2).epsilon(1e-9).margin(1e-15));
+        }
+    }
+}
+
+TEST_CASE("self-contact distances in degenerate configurations", "[cloth][self_contact]") {
+    Mat34 x;
+    // Parallel overlapping edges 0.3 apart: the distance is 0.3 (non-unique closest points).
+    x << 0, 1, 0.5, 1.5, 0, 0, 0.3, 0.3, 0, 0, 0, 0;
+    CHECK(std::sqrt(pair_distance_squared(Kind::edge_edge, x)) == Approx(0.3).epsilon(1e-14));
+    // Collinear disjoint edges: endpoint to endpoint.
+    x << 0, 1, 1.5, 2.5, 0, 0, 0, 0, 0, 0, 0, 0;
+    DistanceRegime r;
+    CHECK(std::sqrt(pair_distance_squared(Kind::edge_edge, x, &r)) == Approx(0.5).epsilon(1e-14));
+    CHECK(r.type == Regime::point_point);
+    // Zero-length edge (a point) against a segment.
+    x << 0.5, 0.5, 0, 1, 0.2, 0.2, 0, 0, 0, 0, 0, 0;
+    CHECK(std::sqrt(pair_distance_squared(Kind::edge_edge, x)) == Approx(0.2).epsilon(1e-14));
+    // Point over a degenerate (collinear) triangle: distance to the segment it spans.
+    x << 0.5, 0, 1, 2, 0.4, 0, 0, 0, 0, 0, 0, 0;
+    CHECK(std::sqrt(pair_distance_squared(Kind::vertex_triangle, x, &r)) ==
+          Approx(0.4).epsilon(1e-14));
+    CHECK(r.type == Regime::point_edge);
+    // Point in the plane of the triangle, inside it: distance 0.
+    x << 0.2, 0, 1, 0, 0.2, 0, 0, 1, 0, 0, 0, 0;
+    CHECK(pair_distance_squared(Kind::vertex_triangle, x) == Approx(0).margin(1e-30));
+}
+
+TEST_CASE("self-contact penalty: finite-difference gradient and Hessian in every regime",
+          "[cloth][self_contact]") {
+    SelfContactParams params;
+    params.thickness_m = 0.005;
+    params.stiffness_n_per_m = 2000;
+    std::string why;
+    REQUIRE(params.is_valid(&why));
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    std::map<std::string, int> seen;
+    // Random pairs of centimetre primitives; keep those within the thickness (and not too
+    // close to 0), until every regime has been checked several times.
+    int tested = 0;
+    for (int trial = 0; trial < 400000 && tested < 600; ++trial) {
+        Mat34 x;
+        for (int c = 0; c < 4; ++c)
+            x.col(c) = 0.006 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        for (Kind kind : {Kind::vertex_triangle, Kind::edge_edge}) {
+            DistanceRegime r;
+            const double d = std::sqrt(pair_distance_squared(kind, x, &r));
+            if (d < 0.1 * params.thickness_m || d > 0.95 * params.thickness_m) continue;
+            const std::string name = regime_name(kind, r);
+            if (seen[name] >= 20) continue;
+            ++seen[name];
+            ++tested;
+            INFO(name << "\nx =\n" << x);
+            check_pair_derivatives(kind, x, params);
+        }
+    }
+    // Vertex–triangle: 3 vertex, 3 edge, 1 face regime; edge–edge: 4 vertex–vertex,
+    // 4 vertex–edge, 1 interior.
+    int vt = 0, ee = 0;
+    for (const auto& [name, count] : seen) {
+        INFO(name << ": " << count);
+        CHECK(count >= 5);
+        (name.rfind("VT", 0) == 0 ? vt : ee) += 1;
+    }
+    CHECK(vt == 7);
+    CHECK(ee == 9);
+
+    // Nearly parallel edges (angle 1e-3 rad) with unique closest points still differentiate.
+    Mat34 x;
+    x << 0, 0.01, 0.012, 0.022, 0, 1e-5, 0.003, 0.003, 0, 0, 0.001, 0.001;
+    DistanceRegime r;
+    pair_distance_squared(Kind::edge_edge, x, &r);
+    INFO(regime_name(Kind::edge_edge, r));
+    check_pair_derivatives(Kind::edge_edge, x, params);
+
+    // Beyond the thickness the energy and its derivatives vanish.
+    x << 0, 0.01, 0, 0.01, 0, 0, 0.01, 0.01, 0, 0, 0, 0;
+    Vector12d g;
+    Matrix12d hess;
+    CHECK(pair_energy(Kind::edge_edge, x, params, &g, &hess) == 0);
+    CHECK(g.norm() == 0);
+    CHECK(hess.norm() == 0);
+}
+
+TEST_CASE("self-contact broad phase finds exactly the brute-force pairs",
+          "[cloth][self_contact]") {
+    for (unsigned seed : {1u, 2u, 3u}) {
+        const ClothMesh mesh = test_fold(14, 0.1, 0.004, 0.0025, seed);
+        std::vector<std::pair<int, int>> excluded;
+        if (seed == 3) excluded = {{0, 20}, {5, 200}, {17, 18}};
+        SelfContact sc(mesh.faces, mesh.vertex_count(), excluded);
+        for (double radius : {0.002, 0.005, 0.012}) {
+            sc.find_candidates(mesh.positions, radius);
+            const auto expected =
+                brute_force_pairs(sc, mesh.positions, mesh.faces, radius, excluded);
+            INFO("seed " << seed << " radius " << radius << ": " << sc.candidates().size()
+                         << " found, " << expected.size() << " expected");
+            CHECK(expected.size() > 20);
+            CHECK(same_pairs(sc.candidates(), expected));
+        }
+        // Deterministic: a second search gives the same list.
+        const auto first = sc.candidates();
+        sc.find_candidates(mesh.positions, 0.012);
+        CHECK(same_pairs(first, sc.candidates()));
+    }
+    SelfContact sc(Eigen::MatrixX3i(0, 3), 0);
+    sc.find_candidates(Eigen::MatrixX3d(0, 3), 0.01);
+    CHECK(sc.candidates().empty());
+}
+
+TEST_CASE("self-contact energy gradient matches finite differences over a mesh",
+          "[cloth][self_contact]") {
+    const ClothMesh mesh = test_fold(10, 0.1, 0.004, 0.001, 5);
+    SelfContact sc(mesh.faces, mesh.vertex_count());
+    SelfContactParams params;
+    sc.find_candidates(mesh.positions, 2 * params.thickness_m);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * mesh.vertex_count());
+    std::vector<PairHessian> blocks;
+    const double e = sc.energy(mesh.positions, params, &g, &blocks);
+    REQUIRE(e > 0);
+    REQUIRE(!blocks.empty());
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    Eigen::MatrixX3d dir(mesh.vertex_count(), 3);
+    for (int i = 0; i < dir.rows(); ++i) dir.row(i) << unit(rng), unit(rng), unit(rng);
+    const double step = 1e-8;
+    const double fd = (sc.energy(mesh.positions + step * dir, params, nullptr, nullptr) -
+                       sc.energy(mesh.positions - step * dir, params, nullptr, nullptr)) /
+                      (2 * step);
+    Eigen::VectorXd dir_flat(3 * dir.rows());
+    for (int i = 0; i < dir.rows(); ++i) dir_flat.segment<3>(3 * i) = dir.row(i).transpose();
+    CHECK(fd == Approx(g.dot(dir_flat)).epsilon(1e-5));
+    // Every block is PSD and belongs to a pair within the thickness.
+    for (const PairHessian& b : blocks) {
+        Eigen::SelfAdjointEigenSolver<Matrix12d> eig(b.hessian);
+        CHECK(eig.eigenvalues().minCoeff() > -1e-8 * b.hessian.norm());
+    }
+    SelfContactParams bad;
+    bad.thickness_m = -1;
+    CHECK_THROWS_AS(sc.energy(mesh.positions, bad, nullptr, nullptr), drape::InvalidInput);
+    CHECK_THROWS_AS(sc.find_candidates(mesh.positions, 0.0), drape::InvalidInput);
+    CHECK_THROWS_AS(SelfContact(mesh.faces, 3), drape::InvalidInput);
+}
+
+TEST_CASE("self-contact step bound is conservative", "[cloth][self_contact]") {
+    const double gap = 0.004, separation = 0.0005;
+    const ClothMesh mesh = test_fold(12, 0.1, gap, 0.0008, 9);
+    const Eigen::MatrixX3d& p = mesh.positions;
+    SelfContact sc(mesh.faces, mesh.vertex_count());
+    const double d0 = min_pair_distance(sc, p, mesh.faces);
+    REQUIRE(d0 > separation);
+    REQUIRE(drape::cloth::count_self_intersections(p, mesh.faces) == 0);
+
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    int would_cross = 0;
+    for (int trial = 0; trial < 12; ++trial) {
+        // The top layer moves down through the bottom one (crossing at α = 1) plus noise,
+        // or (odd trials) a random smooth motion.
+        Eigen::MatrixX3d dx(p.rows(), 3);
+        const double amp = 0.002 * (1 + trial % 4);
+        for (int i = 0; i < p.rows(); ++i) {
+            const bool top = p(i, 2) > 0.5 * gap;
+            dx.row(i) << amp * unit(rng), amp * unit(rng), amp * unit(rng);
+            if (trial % 2 == 0 && top) dx(i, 2) -= 2.5 * gap;
+            if (trial % 2 == 1) dx.row(i) += Eigen::RowVector3d(std::sin(40 * p(i, 0)), 0,
+                                                                std::cos(50 * p(i, 1))) * amp;
+        }
+        const double motion = 2 * dx.rowwise().norm().maxCoeff();
+        sc.find_candidates(p, 0.005 + motion);
+        const double alpha = sc.max_safe_step(p, dx, 0.9, separation);
+        INFO("trial " << trial << " alpha " << alpha);
+        REQUIRE(alpha > 0);
+        REQUIRE(alpha <= 1);
+        if (trial % 2 == 0) {
+            CHECK(alpha > 0.05);  // not trivially small
+            // Without the bound, the layers would meet somewhere along the full step.
+            double closest = 1e300;
+            for (int k = 1; k <= 16; ++k)
+                closest = std::min(closest, min_pair_distance(sc, p + k / 16.0 * dx, mesh.faces));
+            if (closest < separation) ++would_cross;
+        }
+        for (int k = 1; k <= 8; ++k) {
+            const double a = alpha * k / 8.0;
+            CHECK(min_pair_distance(sc, p + a * dx, mesh.faces) >= separation);
+        }
+    }
+    CHECK(would_cross == 6);
+
+    // A rigid translation never brings pairs closer: the full step is safe.
+    Eigen::MatrixX3d shift(p.rows(), 3);
+    shift.rowwise() = Eigen::RowVector3d(0.3, -0.2, 0.5);
+    sc.find_candidates(p, 0.01);
+    CHECK(sc.max_safe_step(p, shift, 0.9, separation) == 1.0);
+    // Too small a radius for the motion shortens the step instead of missing pairs.
+    Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(p.rows(), 3);
+    for (int i = 0; i < p.rows(); ++i)
+        if (p(i, 2) > 0.5 * gap) dx(i, 2) = -3 * gap;
+    sc.find_candidates(p, 0.001);
+    const double alpha = sc.max_safe_step(p, dx, 0.9, separation);
+    CHECK(alpha > 0);
+    for (int k = 1; k <= 8; ++k)
+        CHECK(min_pair_distance(sc, p + alpha * k / 8.0 * dx, mesh.faces) >= separation);
+    // A radius below the separation certifies only rigid motions.
+    sc.find_candidates(p, 0.5 * separation);
+    CHECK(sc.max_safe_step(p, dx, 0.9, separation) == 0.0);
+    CHECK(sc.max_safe_step(p, shift, 0.9, separation) == 1.0);
+    CHECK_THROWS_AS(sc.max_safe_step(p, dx, 0.0, separation), drape::InvalidInput);
+}
+
+TEST_CASE("self-contact benchmark: folded 64x64 grid", "[cloth][self_contact][.bench]") {
+    using clock = std::chrono::steady_clock;
+    auto ms = [](clock::time_point a, clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
+    const ClothMesh mesh = test_fold(64, 1.0, 0.004, 0.0005, 1);
+    SelfContact sc(mesh.faces, mesh.vertex_count());
+    SelfContactParams params;
+    // Best of `reps` runs (the machine is shared): the cost without interference.
+    const int reps = 20;
+    double find_ms = 1e300, gn_ms = 1e300, psd_ms = 1e300, step_ms = 1e300;
+    auto best_of = [&](double& best, auto&& f) {
+        for (int r = 0; r < reps; ++r) {
+            const auto t0 = clock::now();
+            f();
+            best = std::min(best, ms(t0, clock::now()));
+        }
+    };
+    best_of(find_ms, [&] { sc.find_candidates(mesh.positions, 1.5 * params.thickness_m); });
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * mesh.vertex_count());
+    std::vector<PairHessian> blocks;
+    best_of(gn_ms, [&] {
+        blocks.clear();
+        sc.energy(mesh.positions, params, &g, &blocks);
+    });
+    best_of(psd_ms, [&] {
+        blocks.clear();
+        sc.energy(mesh.positions, params, &g, &blocks, HessianMode::projected_psd);
+    });
+    Eigen::MatrixX3d dx = Eigen::MatrixX3d::Zero(mesh.vertex_count(), 3);
+    dx.col(2).setConstant(-0.001);
+    for (int i = 0; i < dx.rows(); ++i)
+        if (mesh.positions(i, 2) < 0.002) dx(i, 2) = 0;
+    best_of(step_ms, [&] { sc.max_safe_step(mesh.positions, dx, 0.9, 0.0005); });
+    const auto t3 = clock::now();
+    const int tris = drape::cloth::count_self_intersections(mesh.positions, mesh.faces);
+    const auto t4 = clock::now();
+    WARN("folded N=64 (4225 vertices, 8192 triangles), radius 7.5 mm, best of " << reps
+         << ": " << sc.candidates().size() << " candidates, " << blocks.size()
+         << " active; find_candidates " << find_ms << " ms, energy+gradient+Hessians "
+         << "gauss_newton " << gn_ms << " ms, projected_psd " << psd_ms
+         << " ms, max_safe_step " << step_ms << " ms, count_self_intersections "
+         << ms(t3, t4) << " ms (" << tris << ")");
+    CHECK(tris == 0);
+}
