@@ -13,8 +13,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -89,6 +87,8 @@ bool SimulatorOptions::is_valid(std::string* why) const {
     if (max_line_search_halvings < 0)
         return fail(detail::concat("max_line_search_halvings = ", max_line_search_halvings,
                                    " must be >= 0"));
+    if (!(std::isfinite(static_damping_time_s) && static_damping_time_s > 0))
+        return fail(detail::concat("static_damping_time_s = ", static_damping_time_s, " must be > 0"));
     if (!(std::isfinite(contact_thickness_m) && contact_thickness_m > 0))
         return fail(detail::concat("contact_thickness_m = ", contact_thickness_m, " must be > 0"));
     if (!(std::isfinite(contact_stiffness_n_per_m3) && contact_stiffness_n_per_m3 > 0))
@@ -163,13 +163,13 @@ struct Simulator::Impl {
     // Per-iteration state.
     std::vector<VertexContact> contacts;  // one per free vertex
     std::vector<FrictionContact> friction;  // lagged over the step
-    // Dynamic steps: contact planes, made when a vertex first comes within the thickness
-    // during the step (at its closest surface point) and kept until the step ends, so that
-    // the step's incremental potential changes only when a plane is added.
+    // Contact planes, made when a vertex first comes within the thickness during a step (at
+    // its closest surface point) and kept until the step ends, so that the step's
+    // incremental potential changes only when a plane is added (Newton then converges
+    // quadratically; the exact distance with its Gauss-Newton Hessian converged linearly).
+    // The static solve renews them every few iterations as the cloth slides.
     std::vector<int> plane_of_vertex;              // -1: none
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> planes;  // (point, normal)
-    std::vector<double> contact_energy;            // per vertex, scratch of potential()
-    std::vector<Eigen::Vector3d> contact_normal;   // per vertex gradient, scratch
     double query_radius = 0;
     Eigen::MatrixX3d step_start;          // x at the start of the step (friction, drag)
     double step_dt = 0;                   // 0 in the static solve (no friction, no drag)
@@ -345,7 +345,7 @@ struct Simulator::Impl {
             if (d.norm() > 1e-9) c.normal = (q.signed_distance_m < 0 ? -d : d).normalized();
             c.stiffness = options.contact_stiffness_n_per_m3 * area(i);
         }, 64);
-        if (step_dt > 0) {
+        {
             plane_of_vertex.resize(static_cast<std::size_t>(p.rows()), -1);
             for (const VertexContact& c : contacts)
                 if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h &&
@@ -419,7 +419,8 @@ struct Simulator::Impl {
         // numbers, ~4x the cost); its Gauss-Newton matrix is exact up to (θ−θ̄)∇²θ, small for
         // cloth, so time steps use it while stretching (whose compressed elements are what
         // make the projected Newton converge only linearly) stays exact.
-        const HessianMode bending_mode = hessian_mode == HessianMode::exact && std::getenv("DRAPE_BEND_EXACT") == nullptr ? HessianMode::gauss_newton : hessian_mode;
+        const HessianMode bending_mode =
+            hessian_mode == HessianMode::exact ? HessianMode::gauss_newton : hessian_mode;
         parallel_range(nh, [&](int h) {
             const auto hs = static_cast<std::size_t>(h);
             hinge_energy[hs] = bending_energy(hinge_positions(p, hinges[hs]), hinge_rests[hs],
@@ -473,14 +474,12 @@ struct Simulator::Impl {
                 scatter(verts, 2, want_g ? g6.data() : nullptr, want_h ? h6.data() : nullptr,
                         want_h ? stitch_slots.data() + 36 * k : nullptr);
         }
-        // Obstacle contact: ½ k (h − d(x))² with d the true signed distance to the obstacle
-        // (queried here, also in line-search trials, so that Newton minimises one fixed
-        // energy); Gauss-Newton Hessian k ∇d∇dᵀ (drops −k(h−d)∇²d, which is negative).
+        // Obstacle contact: ½ k (h − n·(x − c))² against each contact plane (see planes).
         Eigen::Vector3d g3, gf;
         Eigen::Matrix3d h3, hf;
         const double eps = friction_epsilon();
-        if (obstacle && step_dt > 0) {
-            // Dynamic step: the step's contact planes (exact quadratic energies).
+        if (obstacle) {
+            // The contact planes of this step or static solve (exact quadratic energies).
             for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(plane_of_vertex.size()); ++i) {
                 const int plane = plane_of_vertex[static_cast<std::size_t>(i)];
                 if (plane < 0) continue;
@@ -492,37 +491,6 @@ struct Simulator::Impl {
                                                        want_g ? &g3 : nullptr, want_h ? &h3 : nullptr);
                 if (ei <= 0) continue;
                 e += ei;
-                scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
-                        want_h ? vertex_slots.data() + 9 * i : nullptr);
-            }
-        } else if (obstacle) {
-            const double thickness = options.contact_thickness_m;
-            contact_energy.assign(static_cast<std::size_t>(p.rows()), 0.0);
-            contact_normal.resize(static_cast<std::size_t>(p.rows()));
-            parallel_range(static_cast<int>(p.rows()), [&](int i) {
-                if (pinned[static_cast<std::size_t>(i)]) return;
-                const Eigen::Vector3d xi = p.row(i).transpose();
-                const ObstacleQuery q = obstacle->closest(xi, thickness);
-                if (!q.found) return;
-                const Eigen::Vector3d d = xi - q.point;
-                Eigen::Vector3d n = q.normal;
-                if (d.norm() > 1e-12) n = (q.signed_distance_m < 0 ? -d : d).normalized();
-                const double gap = thickness - q.signed_distance_m;
-                const double k = options.contact_stiffness_n_per_m3 * area(i);
-                contact_energy[static_cast<std::size_t>(i)] = 0.5 * k * gap * gap;
-                contact_normal[static_cast<std::size_t>(i)] = -k * gap * n;  // gradient
-            }, 64);
-            for (Eigen::Index i = 0; i < p.rows(); ++i) {
-                const double ei = contact_energy[static_cast<std::size_t>(i)];
-                if (ei <= 0) continue;
-                e += ei;
-                const int vi = static_cast<int>(i);
-                g3 = contact_normal[static_cast<std::size_t>(i)];
-                if (want_h) {
-                    const double k = options.contact_stiffness_n_per_m3 * area(i);
-                    const Eigen::Vector3d n = g3.normalized();
-                    h3 = k * n * n.transpose();
-                }
                 scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
                         want_h ? vertex_slots.data() + 9 * i : nullptr);
             }
@@ -616,6 +584,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
     const bool use_self = options.self_contact;
     std::vector<internal::PairHessian> pair_hessians;
     double last_move = 0;
+    bool renew_next = false;
     const double v_max = inertia_weight > 0 ? v.rowwise().norm().maxCoeff() : 0.0;
 
     auto total = [&](const Eigen::MatrixX3d& q, Eigen::VectorXd* g, double* values,
@@ -648,7 +617,15 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         // one linearised solve per step): with k frozen over the step the incremental
         // potential is one fixed function and Newton converges quadratically, where
         // re-freezing k every iteration can cycle between two strain states.
-        if (inertia_weight == 0 || it == 0) refresh_stiffness(p);
+        // The static solve renews the stiffness and the contact planes every few iterations
+        // (outer fixed-point iterations around Newton on a fixed energy).
+        const bool renew = it == 0 || (inertia_weight == 0 && (it % 8 == 0 || renew_next));
+        renew_next = false;
+        if (renew) refresh_stiffness(p);
+        if (inertia_weight == 0 && renew) {
+            planes.clear();
+            plane_of_vertex.assign(static_cast<std::size_t>(p.rows()), -1);
+        }
         update_obstacle_contacts(p);
         // Self-contact candidates within h + twice the expected motion of this iteration
         // (the last step's, or the velocity's over the step): the energy ignores pairs
@@ -675,6 +652,11 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             break;
         }
         if (s.gradient_inf_norm_n <= s.tolerance_n) {
+            // The static solve converged on a frozen stiffness: confirm with a fresh one.
+            if (inertia_weight == 0 && !renew) {
+                renew_next = true;
+                continue;
+            }
             s.termination = StepTermination::converged;
             break;
         }
@@ -695,11 +677,17 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         bool use_full = false;
         // Inertia on the diagonal; self-contact blocks in a second matrix with their own
         // (growing) pattern, summed into `full`.
+        // The static solve has no inertia; a mass-proportional damping M/τ² in the Newton
+        // matrix (Levenberg-Marquardt) keeps its steps bounded along zero-energy modes (a
+        // skirt turning about a round body) without changing the equilibrium it finds.
+        const double newton_weight =
+            inertia_weight > 0 ? inertia_weight
+                               : 1 / (options.static_damping_time_s * options.static_damping_time_s);
         auto add_inertia_and_pairs = [&]() {
             for (Eigen::Index i = 0; i < p.rows(); ++i)
                 for (int c = 0; c < 3; ++c) {
                     const int d = dof(static_cast<int>(i), c);
-                    if (d >= 0) hessian.valuePtr()[diagonal_slots[static_cast<std::size_t>(d)]] += inertia_weight * mass(i);
+                    if (d >= 0) hessian.valuePtr()[diagonal_slots[static_cast<std::size_t>(d)]] += newton_weight * mass(i);
                 }
             const bool has_pairs = !pair_hessians.empty();
             if (has_pairs && update_contact_blocks(pair_hessians)) solver.reset();
@@ -808,9 +796,6 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             }
         }
         s.seconds_assembly += seconds_since(t0);
-        if (std::getenv("DRAPE_DEBUG_NEWTON"))
-            std::fprintf(stderr, "  it %d |g| %.3g alpha %.3g bound %.3g e %.9g\n", it, s.gradient_inf_norm_n, alpha,
-                         obstacle_step_bound(dx), e);
         if (!accepted) {
             s.termination = StepTermination::line_search_failed;
             s.message = "no energy decrease along the Newton direction";
@@ -932,7 +917,22 @@ ContactReport Simulator::contact_report() const {
         }
     }
     r.max_stitch_gap_m = m.max_stitch_gap(m.x);
-    r.self_intersections = count_self_intersections(m.x, m.mesh.faces);
+    // A sewn garment is one surface: stitched vertices count as one (else the triangles on
+    // the two sides of a closed seam, which touch along it, would count as intersecting).
+    std::vector<int> rep(static_cast<std::size_t>(m.x.rows()));
+    for (std::size_t i = 0; i < rep.size(); ++i) rep[i] = static_cast<int>(i);
+    auto find = [&](int i) {
+        while (rep[static_cast<std::size_t>(i)] != i) i = rep[static_cast<std::size_t>(i)] = rep[static_cast<std::size_t>(rep[static_cast<std::size_t>(i)])];
+        return i;
+    };
+    for (const Stitch& st : m.stitches) {
+        const int a = find(st.a), b = find(st.b);
+        if (a != b) rep[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+    Eigen::MatrixX3i merged = m.mesh.faces;
+    for (Eigen::Index f = 0; f < merged.rows(); ++f)
+        for (int c = 0; c < 3; ++c) merged(f, c) = find(merged(f, c));
+    r.self_intersections = count_self_intersections(m.x, merged);
     return r;
 }
 

@@ -43,6 +43,9 @@ struct SimulatorOptions {
     /// Newton matrix of the elastic terms in solve_static() (no inertia): gauss_newton
     /// (cheap, PSD; linear convergence where the cloth is compressed) or projected_psd.
     HessianMode static_hessian = HessianMode::gauss_newton;
+    /// solve_static() damps its Newton steps with M/τ² (as a time step of τ would), which
+    /// keeps them bounded along zero-energy modes; the equilibrium is unchanged. > 0.
+    double static_damping_time_s = 0.05;
 
     // ---- contact ----
     /// Cloth–obstacle and cloth–cloth contact thickness h (m): a vertex is pushed back while

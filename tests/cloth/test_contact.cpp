@@ -1,0 +1,359 @@
+// Body contact, friction, seams: finite-difference checks of every energy, the obstacle's
+// closest-point queries against brute force, and physics scenes with numbers (a stitched
+// seam closing, a skirt draping on a cone-and-cylinder body, an elastica cantilever).
+#include <drape/cloth/contact.hpp>
+#include <drape/cloth/intersections.hpp>
+#include <drape/cloth/local_curvature.hpp>
+#include <drape/cloth/obstacle.hpp>
+#include <drape/cloth/scenes.hpp>
+#include <drape/cloth/simulator.hpp>
+#include <drape/core/errors.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <catch2/catch.hpp>
+
+#include "gray_interlock_fixture.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+using namespace drape::cloth;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Central differences of a scalar function of a vector.
+template <int N, typename F>
+Eigen::Matrix<double, N, 1> fd_gradient(F&& f, const Eigen::Matrix<double, N, 1>& x, double h) {
+    Eigen::Matrix<double, N, 1> g;
+    for (int i = 0; i < N; ++i) {
+        Eigen::Matrix<double, N, 1> a = x, b = x;
+        a(i) += h;
+        b(i) -= h;
+        g(i) = (f(a) - f(b)) / (2 * h);
+    }
+    return g;
+}
+
+// Closest point on a triangle soup by brute force (dense sampling is not needed: we test the
+// BVH traversal, so the reference uses the same exact point-triangle routine via 1-face
+// obstacles).
+double brute_distance(const TriangleMesh& m, const Eigen::Vector3d& p) {
+    double best = 1e300;
+    for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+        Eigen::MatrixX3d v(3, 3);
+        for (int c = 0; c < 3; ++c) v.row(c) = m.positions.row(m.faces(f, c));
+        Eigen::MatrixX3i one(1, 3);
+        one << 0, 1, 2;
+        best = std::min(best, std::abs(Obstacle(v, one).closest(p, 1e300).signed_distance_m));
+    }
+    return best;
+}
+
+}  // namespace
+
+TEST_CASE("plane contact energy: finite differences and the thickness", "[cloth][contact]") {
+    const Eigen::Vector3d c(0.1, -0.2, 0.3), n = Eigen::Vector3d(0.3, 0.4, 0.866).normalized();
+    const double h = 5e-3, k = 800;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-4e-3, 4e-3);
+    for (int trial = 0; trial < 20; ++trial) {
+        const Eigen::Vector3d x = c + n * (0.5 * h + u(rng)) + Eigen::Vector3d(u(rng), u(rng), u(rng));
+        Eigen::Vector3d g;
+        Eigen::Matrix3d H;
+        plane_contact_energy(x, c, n, h, k, &g, &H);
+        auto e = [&](const Eigen::Vector3d& y) { return plane_contact_energy(y, c, n, h, k); };
+        CHECK((fd_gradient<3>(e, x, 1e-7) - g).norm() <= 1e-6 * (1 + g.norm()));
+        Eigen::Matrix3d Hfd;
+        for (int i = 0; i < 3; ++i) {
+            auto gi = [&](const Eigen::Vector3d& y) {
+                Eigen::Vector3d gy;
+                plane_contact_energy(y, c, n, h, k, &gy);
+                return gy;
+            };
+            Eigen::Vector3d a = x, b = x;
+            a(i) += 1e-7;
+            b(i) -= 1e-7;
+            Hfd.col(i) = (gi(a) - gi(b)) / 2e-7;
+        }
+        CHECK((Hfd - H).norm() <= 1e-5 * (1 + H.norm()));
+    }
+    // Zero outside the thickness, ½ k h² on the plane.
+    CHECK(plane_contact_energy(c + 1.01 * h * n, c, n, h, k) == 0);
+    CHECK(plane_contact_energy(c, c, n, h, k) == Approx(0.5 * k * h * h));
+}
+
+TEST_CASE("friction energy: finite differences in the static and sliding regimes, Coulomb force",
+          "[cloth][contact][friction]") {
+    const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.1, 1).normalized();
+    const double lambda = 0.02, mu = 0.3, eps = 1e-4;
+    std::mt19937 rng(5);
+    std::normal_distribution<double> u(0, 1);
+    for (double scale : {0.3 * eps, 0.9 * eps, 3 * eps, 50 * eps}) {
+        for (int trial = 0; trial < 10; ++trial) {
+            const Eigen::Vector3d d = scale * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+            Eigen::Vector3d g;
+            Eigen::Matrix3d H;
+            friction_energy(d, n, lambda, mu, eps, &g, &H);
+            auto e = [&](const Eigen::Vector3d& y) { return friction_energy(y, n, lambda, mu, eps); };
+            const double step = 1e-3 * scale;
+            CHECK((fd_gradient<3>(e, d, step) - g).norm() <= 1e-5 * mu * lambda);
+            Eigen::Matrix3d Hfd;
+            for (int i = 0; i < 3; ++i) {
+                Eigen::Vector3d a = d, b = d, ga, gb;
+                a(i) += step;
+                b(i) -= step;
+                friction_energy(a, n, lambda, mu, eps, &ga);
+                friction_energy(b, n, lambda, mu, eps, &gb);
+                Hfd.col(i) = (ga - gb) / (2 * step);
+            }
+            CHECK((Hfd - H).norm() <= 1e-3 * H.norm() + 1e-9);
+            CHECK(H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff() >= -1e-9 * H.norm());
+            // Never more than μλ; exactly μλ when sliding; no normal component.
+            CHECK(g.norm() <= mu * lambda * (1 + 1e-12));
+            if (scale > eps) CHECK(g.norm() == Approx(mu * lambda).epsilon(1e-9));
+            CHECK(std::abs(g.dot(n)) <= 1e-12);
+        }
+    }
+}
+
+TEST_CASE("stitch energy: finite differences with and without rest length", "[cloth][contact][seam]") {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> u(0, 0.01);
+    for (double rest : {0.0, 0.004, 0.03}) {
+        for (int trial = 0; trial < 10; ++trial) {
+            Vector6d x;
+            for (int i = 0; i < 6; ++i) x(i) = u(rng);
+            auto e = [&](const Vector6d& y) {
+                return stitch_energy(y.head<3>(), y.tail<3>(), rest, 500.0);
+            };
+            Vector6d g;
+            Matrix6d H;
+            stitch_energy(x.head<3>(), x.tail<3>(), rest, 500.0, &g, &H, HessianMode::exact);
+            CHECK((fd_gradient<6>(e, x, 1e-7) - g).norm() <= 1e-6 * (1 + g.norm()));
+            Matrix6d Hfd;
+            for (int i = 0; i < 6; ++i) {
+                Vector6d a = x, b = x, ga, gb;
+                a(i) += 1e-7;
+                b(i) -= 1e-7;
+                stitch_energy(a.head<3>(), a.tail<3>(), rest, 500.0, &ga);
+                stitch_energy(b.head<3>(), b.tail<3>(), rest, 500.0, &gb);
+                Hfd.col(i) = (ga - gb) / 2e-7;
+            }
+            CHECK((Hfd - H).norm() <= 1e-5 * (1 + H.norm()));
+            Matrix6d P;
+            stitch_energy(x.head<3>(), x.tail<3>(), rest, 500.0, nullptr, &P, HessianMode::projected_psd);
+            CHECK(P.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff() >= -1e-9);
+        }
+    }
+}
+
+TEST_CASE("obstacle: closest points and signed distances match brute force", "[cloth][contact][obstacle]") {
+    const TriangleMesh sphere = make_icosphere(2, 0.5, Eigen::Vector3d(0.1, 0.2, -0.1));
+    REQUIRE(sphere.positions.rows() == 162);
+    const Obstacle obstacle(sphere.positions, sphere.faces);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-0.8, 0.8);
+    int inside = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const Eigen::Vector3d p = Eigen::Vector3d(0.1, 0.2, -0.1) + Eigen::Vector3d(u(rng), u(rng), u(rng));
+        const ObstacleQuery q = obstacle.closest(p, 1e300);
+        REQUIRE(q.found);
+        CHECK(std::abs(q.signed_distance_m) == Approx(brute_distance(sphere, p)).margin(1e-12));
+        // Sign = inside test of the closed mesh.
+        const bool in = point_inside_closed_mesh(p, sphere.positions, sphere.faces);
+        CHECK((q.signed_distance_m < 0) == in);
+        inside += in;
+    }
+    CHECK(inside > 10);
+    // A search radius excludes far points; moving the obstacle moves the answers.
+    CHECK_FALSE(obstacle.closest(Eigen::Vector3d(3, 0, 0), 0.5).found);
+    Obstacle moved = obstacle;
+    moved.set_positions(sphere.positions.rowwise() + Eigen::RowVector3d(1, 0, 0));
+    const Eigen::Vector3d p(1.1, 0.2, 0.7);
+    CHECK(moved.closest(p, 1e300).signed_distance_m ==
+          Approx(obstacle.closest(p - Eigen::Vector3d(1, 0, 0), 1e300).signed_distance_m));
+    // Bad input.
+    Eigen::MatrixX3i bad = sphere.faces;
+    bad(0, 0) = 1000;
+    CHECK_THROWS_AS(Obstacle(sphere.positions, bad), drape::InvalidInput);
+    CHECK_THROWS_AS(moved.set_positions(Eigen::MatrixX3d::Zero(3, 3)), drape::InvalidInput);
+}
+
+TEST_CASE("a cloth square dropped on a sphere rests on it, outside, without crossing itself",
+          "[cloth][contact][simulator]") {
+    // A 16 x 16 version of the anchor scene, 0.6 s.
+    AnchorScene scene = make_anchor_scene(16);
+    Simulator sim(scene.cloth, drape::test::gray_interlock_material(), scene.options);
+    sim.set_obstacle(Obstacle(scene.sphere.positions, scene.sphere.faces));
+    int failed = 0;
+    for (int k = 0; k < 120; ++k) failed += sim.step().usable() ? 0 : 1;
+    CHECK(failed == 0);
+    const ContactReport r = sim.contact_report();
+    CHECK(r.max_penetration_m <= 1e-3);
+    CHECK(r.self_intersections == 0);
+    // The centre rests on the sphere's top at about the thickness (within 1.5 mm).
+    const double top = scene.sphere.positions.col(2).maxCoeff();
+    CHECK(sim.positions()(scene.centre_vertex, 2) - top == Approx(scene.options.contact_thickness_m).margin(1.5e-3));
+    // Friction holds the cloth: the centre has not slid off the top.
+    CHECK(sim.positions().row(scene.centre_vertex).head<2>().norm() < 0.01);
+}
+
+TEST_CASE("an open seam is pulled closed and then held", "[cloth][contact][seam]") {
+    // Two 0.2 m squares side by side with a 4 cm gap, stitched along the facing edges.
+    const int n = 8;
+    ClothMesh a = make_square_grid(n, 0.2, Eigen::Vector3d(-0.22, 0, 0), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+    ClothMesh b = make_square_grid(n, 0.2, Eigen::Vector3d(0.02, 0, 0), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+    const int na = a.vertex_count();
+    ClothMesh m;
+    m.positions.resize(2 * na, 3);
+    m.positions << a.positions, b.positions;
+    m.faces.resize(2 * a.face_count(), 3);
+    m.faces << a.faces, (b.faces.array() + na).matrix();
+    m.pattern.resize(2 * na, 2);
+    m.pattern << a.pattern, (b.pattern.rowwise() + Eigen::RowVector2d(0.3, 0)).eval();
+    m.pattern_faces = m.faces;
+    SimulatorOptions options;
+    options.gravity_m_per_s2.setZero();
+    options.air_drag_n_s_per_m3 = 0.5;
+    Simulator sim(m, drape::test::gray_interlock_material(), options);
+    std::vector<Stitch> stitches;
+    for (int j = 0; j <= n; ++j)  // right column of a (u = 0.2) to left column of b (u = 0)
+        stitches.push_back({j * (n + 1) + n, na + j * (n + 1), 0.2 / n});
+    sim.set_stitches(stitches);
+    CHECK(sim.contact_report().max_stitch_gap_m == Approx(0.04));
+    StepSummary s;
+    for (int k = 0; k < 60; ++k) {
+        s = sim.step();
+        REQUIRE(s.usable());
+    }
+    INFO(s.brief_report());
+    CHECK(s.max_stitch_gap_m < 1e-3);
+    // Held: a static solve keeps it closed, and the pieces did not crumple.
+    const StepSummary st = sim.solve_static();
+    CHECK(st.termination == StepTermination::converged);
+    const ContactReport r = sim.contact_report();
+    CHECK(r.max_stitch_gap_m < 1e-4);
+    CHECK(r.self_intersections == 0);
+    CHECK_THROWS_AS(sim.set_stitches({{0, 0, 0.01}}), drape::InvalidInput);
+    CHECK_THROWS_AS(sim.set_stitches({{0, 100000, 0.01}}), drape::InvalidInput);
+}
+
+namespace {
+
+// A closed surface of revolution about z: (z, r) profile from top to bottom, capped.
+TriangleMesh revolve(const std::vector<std::pair<double, double>>& profile, int segments) {
+    const int rings = static_cast<int>(profile.size());
+    TriangleMesh m;
+    m.positions.resize(rings * segments + 2, 3);
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const double t = 2 * kPi * j / segments;
+            m.positions.row(i * segments + j) << profile[static_cast<std::size_t>(i)].second * std::cos(t),
+                profile[static_cast<std::size_t>(i)].second * std::sin(t), profile[static_cast<std::size_t>(i)].first;
+        }
+    const int top = rings * segments, bottom = top + 1;
+    m.positions.row(top) << 0, 0, profile.front().first;
+    m.positions.row(bottom) << 0, 0, profile.back().first;
+    std::vector<Eigen::Vector3i> f;
+    for (int j = 0; j < segments; ++j) {
+        const int j1 = (j + 1) % segments;
+        f.emplace_back(top, j, j1);
+        for (int i = 0; i + 1 < rings; ++i) {
+            const int a = i * segments + j, b = i * segments + j1, c = (i + 1) * segments + j,
+                      d = (i + 1) * segments + j1;
+            f.emplace_back(a, c, d);
+            f.emplace_back(a, d, b);
+        }
+        f.emplace_back(bottom, (rings - 1) * segments + j1, (rings - 1) * segments + j);
+    }
+    m.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
+    for (std::size_t i = 0; i < f.size(); ++i) m.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("a skirt with a stitched seam drapes on a cone-and-cylinder body", "[cloth][contact][skirt]") {
+    // Body: a cone (hips) from r = 0.10 m at z = 1.0 to r = 0.20 m at z = 0.8, then a
+    // cylinder to z = 0.3. Skirt: a half-annulus pattern (inner radius 0.34 m, 0.4 m long),
+    // wrapped into a cone frustum (waist r ≈ 0.17, hem r ≈ 0.37) whose two straight edges
+    // are stitched; it starts open by 2 cm and above the hips, and is dropped.
+    const TriangleMesh body = revolve({{1.0, 0.10}, {0.9, 0.15}, {0.8, 0.20}, {0.55, 0.20}, {0.3, 0.20}}, 48);
+    const int nr = 8, nt = 48;
+    const double a = 0.34, len = 0.4, phi = kPi;
+    const double wrap = (2 * kPi - 0.02 / 0.17) / phi;  // angle scale in 3D: leaves a 2 cm gap
+    Eigen::MatrixX3d x((nr + 1) * (nt + 1), 3);
+    Eigen::MatrixX2d uv((nr + 1) * (nt + 1), 2);
+    for (int i = 0; i <= nr; ++i)
+        for (int j = 0; j <= nt; ++j) {
+            const double s = a + len * i / nr, t = phi * j / nt;
+            const int id = i * (nt + 1) + j;
+            uv.row(id) << s * std::cos(t), s * std::sin(t);
+            // Developable cone: slant distance s maps to radius s·phi/2π, height drops.
+            const double r = s * phi / (2 * kPi), drop = std::sqrt(s * s - r * r) - std::sqrt(a * a - std::pow(a * phi / (2 * kPi), 2));
+            const double ang = t * wrap;
+            x.row(id) << r * std::cos(ang), r * std::sin(ang), 1.02 - drop;
+        }
+    Eigen::MatrixX3i faces(2 * nr * nt, 3);
+    int f = 0;
+    for (int i = 0; i < nr; ++i)
+        for (int j = 0; j < nt; ++j) {
+            const int p = i * (nt + 1) + j, q = p + 1, r = p + nt + 1, s = r + 1;
+            // Counter-clockwise in the pattern (u, v) = s(cos t, sin t).
+            if ((i + j) % 2 == 0) {
+                faces.row(f++) << p, r, s;
+                faces.row(f++) << p, s, q;
+            } else {
+                faces.row(f++) << p, r, q;
+                faces.row(f++) << q, r, s;
+            }
+        }
+    const ClothMesh skirt = ClothMesh::from_vertex_pattern(x, faces, uv);
+    SimulatorOptions options;
+    options.air_drag_n_s_per_m3 = 3.0;  // settles the swing within the test's 1.25 s
+    Simulator sim(skirt, drape::test::gray_interlock_material(), options);
+    sim.set_obstacle(Obstacle(body.positions, body.faces));
+    std::vector<Stitch> stitches;
+    for (int i = 0; i <= nr; ++i) stitches.push_back({i * (nt + 1), i * (nt + 1) + nt, len / nr});
+    sim.set_stitches(stitches);
+    int failed = 0;
+    StepSummary s;
+    for (int k = 0; k < 250; ++k) {
+        s = sim.step();
+        failed += s.usable() ? 0 : 1;
+        if (std::getenv("DRAPE_DEBUG_SKIRT") && k % 10 == 0)
+            std::printf("step %d waist z %.4f r %.4f: %s\n", k, sim.positions()(0, 2),
+                        sim.positions().row(0).head<2>().norm(), s.brief_report().c_str());
+    }
+    INFO(s.brief_report());
+    CHECK(failed == 0);
+    const ContactReport before = sim.contact_report();
+    INFO("after the dynamic phase: " << before.self_intersections << " self-intersections, gap "
+         << before.max_stitch_gap_m << " m, penetration " << before.max_penetration_m << " m");
+    CHECK(before.self_intersections == 0);
+    // The last steps converged and the cloth is settling (drag and friction).
+    CHECK(s.termination == StepTermination::converged);
+    const double speed = std::sqrt(sim.velocities().rowwise().squaredNorm().mean());
+    INFO("rms speed " << speed << " m/s, max " << sim.velocities().rowwise().norm().maxCoeff());
+    CHECK(speed < 0.05);  // settling, not yet at rest (see docs/cloth.md)
+    const ContactReport r = sim.contact_report();
+    CHECK(r.max_stitch_gap_m < 1e-3);
+    CHECK(r.max_penetration_m <= 1e-3);
+    CHECK(r.self_intersections == 0);
+    // It hangs from the hips: the waist settled where the cone is as wide as the waist.
+    double waist_z = 0;
+    for (int j = 0; j <= nt; ++j) waist_z += sim.positions()(j, 2) / (nt + 1);
+    CHECK(waist_z > 0.8);
+    CHECK(waist_z < 0.95);
+    // Folds: the hem's radius oscillates around the body (at least 4 waves).
+    int maxima = 0;
+    const int hem = nr * (nt + 1);
+    auto radius = [&](int j) { return sim.positions().row(hem + (j + nt) % nt).head<2>().norm(); };
+    for (int j = 0; j < nt; ++j)
+        if (radius(j) > radius(j - 1) && radius(j) > radius(j + 1)) ++maxima;
+    CHECK(maxima >= 4);
+}
