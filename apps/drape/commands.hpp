@@ -15,4 +15,24 @@ void add_body_command(CLI::App& app);
 ///  [--gender female|male] [--focal PX] --out DIR`
 void add_fit_body_command(CLI::App& app);
 
+/// `drape render [--body body.json] [--mesh M.obj ...] [--lighting midday|sunset|studio]
+///  [--camera auto|fitted|front|camera.json] [--photo P.jpg] --out render.png [--labels L.png]`
+void add_render_command(CLI::App& app);
+
+/// `drape segment IMAGE --joints J.json [--strokes S.png] [--hint TYPE] [--height M] --out DIR`
+void add_segment_command(CLI::App& app);
+
+/// `drape strokes LABELS.png --out S.png` (simulated user strokes)
+void add_strokes_command(CLI::App& app);
+
+/// `drape eval-segment DIR [--mode strokes|auto|both] [--scale-check] --out RESULT.json`
+void add_eval_segment_command(CLI::App& app);
+
+/// `drape pattern --garment skirt|pants|tshirt|dress --sizing G.json|auto [--body P.json]
+///  [--edge CM] --out DIR` (pattern.svg/dxf/json, pattern_mesh.obj, summary.json)
+void add_pattern_command(CLI::App& app);
+
+/// `drape bench-cloth [--n 32|64] [--seconds S] [--material NAME|PATH] [--threads N] [--out R.json]`
+void add_bench_cloth_command(CLI::App& app);
+
 }  // namespace drape::app

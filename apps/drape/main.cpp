@@ -14,6 +14,12 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "drape 0.1.0");
     drape::app::add_body_command(app);
     drape::app::add_fit_body_command(app);
+    drape::app::add_bench_cloth_command(app);
+    drape::app::add_render_command(app);
+    drape::app::add_segment_command(app);
+    drape::app::add_strokes_command(app);
+    drape::app::add_eval_segment_command(app);
+    drape::app::add_pattern_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,5 +1,8 @@
 #include <drape/cloth/material.hpp>
 
+#include "builtin_materials.hpp"
+
+#include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
 
 #include <nlohmann/json.hpp>
@@ -7,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <utility>
 #include <sstream>
 
 namespace drape::cloth {
@@ -48,6 +53,97 @@ void read_table(const nlohmann::json& doc, const std::string& file, const char* 
     for (std::size_t r = 0; r < R; ++r) read_row(table[r], detail::concat(where, " row ", r), out[r]);
 }
 
+constexpr const char* kFormatName = "drape-material";
+constexpr int kFormatVersion = 1;
+
+std::string field_where(const std::string& file, const char* field) {
+    return detail::concat("material file '", file, "': field '", field, "'");
+}
+
+double read_number(const nlohmann::json& doc, const std::string& file, const char* field) {
+    const std::string where = field_where(file, field);
+    if (!doc.contains(field)) throw InvalidInput(where + " is missing");
+    if (!doc[field].is_number()) throw InvalidInput(where + " is not a number");
+    const double x = doc[field].get<double>();
+    if (!finite_positive(x)) throw InvalidInput(detail::concat(where, " = ", x, " must be > 0"));
+    return x;
+}
+
+// ArcSim: {"density", "stretching", "bending"}; the numbers are already our SI units.
+Material read_arcsim_material(const nlohmann::json& doc, const std::string& file) {
+    Material m;
+    m.density_kg_per_m2 = read_number(doc, file, "density");
+    read_table(doc, file, "stretching", m.stretching_n_per_m);
+    read_table(doc, file, "bending", m.bending_n_m);
+    return m;
+}
+
+// Drape's own format, version 1 (docs/materials.md). Unknown fields are errors, so that a
+// misspelt optional field (a scale) is not silently replaced by its default.
+Material read_drape_material(const nlohmann::json& doc, const std::string& file,
+                             MaterialInfo& info) {
+    const nlohmann::json& format = doc["format"];
+    if (!format.is_string() || format.get<std::string>() != kFormatName)
+        throw InvalidInput(detail::concat(field_where(file, "format"), " = ", format.dump(),
+                                          " is not \"", kFormatName, "\""));
+    if (!doc.contains("version"))
+        throw InvalidInput(field_where(file, "version") + " is missing");
+    const nlohmann::json& version = doc["version"];
+    if (!version.is_number_integer() || version.get<long long>() != kFormatVersion)
+        throw InvalidInput(detail::concat(field_where(file, "version"), " = ", version.dump(),
+                                          " is not supported (this build reads version ",
+                                          kFormatVersion, ")"));
+    static const char* const kKnown[] = {"format", "version", "name", "description", "source",
+                                         "license", "density_kg_per_m2", "stretching_n_per_m",
+                                         "bending_n_m", "stretching_scale", "bending_scale"};
+    for (const auto& item : doc.items())
+        if (std::find_if(std::begin(kKnown), std::end(kKnown),
+                         [&](const char* k) { return item.key() == k; }) == std::end(kKnown))
+            throw InvalidInput(detail::concat("material file '", file, "': unknown field '",
+                                              item.key(), "'"));
+    for (auto [field, target] : {std::pair<const char*, std::string*>{"name", &info.name},
+                                 {"description", &info.description},
+                                 {"source", &info.source},
+                                 {"license", &info.license}}) {
+        if (!doc.contains(field)) continue;
+        if (!doc[field].is_string())
+            throw InvalidInput(field_where(file, field) + " is not a string");
+        *target = doc[field].get<std::string>();
+    }
+    Material m;
+    m.density_kg_per_m2 = read_number(doc, file, "density_kg_per_m2");
+    read_table(doc, file, "stretching_n_per_m", m.stretching_n_per_m);
+    read_table(doc, file, "bending_n_m", m.bending_n_m);
+    if (doc.contains("stretching_scale"))
+        m.stretching_scale = read_number(doc, file, "stretching_scale");
+    if (doc.contains("bending_scale")) m.bending_scale = read_number(doc, file, "bending_scale");
+    return m;
+}
+
+// Shortest decimal text that parses back to the same double (nlohmann's dtoa).
+std::string json_number(double x) { return nlohmann::json(x).dump(); }
+
+std::string json_string(const std::string& text, const char* field) {
+    try {
+        return nlohmann::json(text).dump();
+    } catch (const nlohmann::json::type_error& e) {
+        throw InvalidInput(detail::concat("save_material: field '", field,
+                                          "' is not valid UTF-8: ", e.what()));
+    }
+}
+
+// One row per line: [[a, b, ...],\n [..]] indented to sit under the field.
+template <std::size_t R, std::size_t C>
+std::string json_table(const std::array<std::array<double, C>, R>& table) {
+    std::string text = "[\n";
+    for (std::size_t r = 0; r < R; ++r) {
+        text += "    [";
+        for (std::size_t c = 0; c < C; ++c) text += (c ? ", " : "") + json_number(table[r][c]);
+        text += r + 1 < R ? "],\n" : "]\n";
+    }
+    return text + "  ]";
+}
+
 }  // namespace
 
 bool Material::is_valid(std::string* why) const {
@@ -72,7 +168,7 @@ bool Material::is_valid(std::string* why) const {
     return true;
 }
 
-Material load_material(const std::filesystem::path& path) {
+Material load_material(const std::filesystem::path& path, MaterialInfo* info) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(detail::concat("cannot open material file '", path.string(), "'"));
     std::ostringstream buffer;
@@ -85,27 +181,77 @@ Material load_material(const std::filesystem::path& path) {
         // ignore_comments: paper.json and aluminium.json start with // lines (jsoncpp style).
         doc = nlohmann::json::parse(buffer.str(), nullptr, /*allow_exceptions=*/true,
                                     /*ignore_comments=*/true);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {  // parse_error, out_of_range (1e999)
         throw InvalidInput(detail::concat("material file '", file, "' is not valid JSON: ", e.what()));
     }
     if (!doc.is_object())
         throw InvalidInput(detail::concat("material file '", file, "': top level must be an object"));
 
-    Material m;
-    if (!doc.contains("density"))
-        throw InvalidInput(detail::concat("material file '", file, "': field 'density' is missing"));
-    if (!doc["density"].is_number())
-        throw InvalidInput(detail::concat("material file '", file, "': field 'density' is not a number"));
-    m.density_kg_per_m2 = doc["density"].get<double>();
-    if (!finite_positive(m.density_kg_per_m2))
-        throw InvalidInput(detail::concat("material file '", file, "': field 'density' = ",
-                                          m.density_kg_per_m2, " must be > 0"));
-    read_table(doc, file, "stretching", m.stretching_n_per_m);
-    read_table(doc, file, "bending", m.bending_n_m);
+    MaterialInfo scratch;
+    MaterialInfo& out_info = info ? *info : scratch;
+    out_info = MaterialInfo{};
+    Material m = doc.contains("format") ? read_drape_material(doc, file, out_info)
+                                        : read_arcsim_material(doc, file);
+    if (!doc.contains("format")) out_info.name = path.stem().string();
     std::string why;
     if (!m.is_valid(&why))
         throw InvalidInput(detail::concat("material file '", file, "': ", why));
     return m;
+}
+
+void save_material(const Material& material, const std::filesystem::path& path,
+                   const MaterialInfo& info) {
+    std::string why;
+    if (!material.is_valid(&why))
+        throw InvalidInput(detail::concat("save_material('", path.string(), "'): ", why));
+    std::ostringstream os;
+    os << "{\n"
+       << "  \"format\": " << json_string(kFormatName, "format") << ",\n"
+       << "  \"version\": " << kFormatVersion << ",\n"
+       << "  \"name\": " << json_string(info.name, "name") << ",\n"
+       << "  \"description\": " << json_string(info.description, "description") << ",\n"
+       << "  \"source\": " << json_string(info.source, "source") << ",\n"
+       << "  \"license\": " << json_string(info.license, "license") << ",\n"
+       << "  \"density_kg_per_m2\": " << json_number(material.density_kg_per_m2) << ",\n"
+       << "  \"stretching_n_per_m\": " << json_table(material.stretching_n_per_m) << ",\n"
+       << "  \"bending_n_m\": " << json_table(material.bending_n_m) << ",\n"
+       << "  \"stretching_scale\": " << json_number(material.stretching_scale) << ",\n"
+       << "  \"bending_scale\": " << json_number(material.bending_scale) << "\n"
+       << "}\n";
+    write_text_atomically(path, os.str());
+}
+
+namespace {
+
+const builtin::Entry& find_builtin(const std::string& name) {
+    for (const builtin::Entry& e : builtin::kMaterials)
+        if (name == e.name) return e;
+    std::string known;
+    for (const builtin::Entry& e : builtin::kMaterials)
+        known += (known.empty() ? "" : ", ") + std::string(e.name);
+    throw InvalidInput(detail::concat("unknown built-in material '", name, "'; known: ", known));
+}
+
+}  // namespace
+
+std::vector<std::string> builtin_material_names() {
+    std::vector<std::string> names;
+    for (const builtin::Entry& e : builtin::kMaterials) names.emplace_back(e.name);
+    return names;
+}
+
+Material builtin_material(const std::string& name) {
+    const builtin::Entry& e = find_builtin(name);
+    Material m;
+    m.density_kg_per_m2 = e.density_kg_per_m2;
+    m.stretching_n_per_m = e.stretching_n_per_m;
+    m.bending_n_m = e.bending_n_m;
+    return m;
+}
+
+MaterialInfo builtin_material_info(const std::string& name) {
+    const builtin::Entry& e = find_builtin(name);
+    return {e.name, e.description, e.source, builtin::kLicense};
 }
 
 StretchingStiffness stretching_stiffness(const Material& material, double stretch,

@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
 
 using namespace drape::cloth;
 
@@ -26,15 +25,6 @@ struct AnchorResult {
 
 AnchorResult run_anchor(int n, double duration_s, bool verbose) {
     AnchorScene scene = make_anchor_scene(n);
-    if (const char* mu = std::getenv("DRAPE_ANCHOR_MU")) scene.options.obstacle_friction = std::atof(mu);
-    if (const char* ev = std::getenv("DRAPE_ANCHOR_EPSV")) scene.options.friction_slip_speed_m_per_s = std::atof(ev);
-    if (const char* mode = std::getenv("DRAPE_ANCHOR_HESSIAN")) {
-        const HessianMode m = std::string(mode) == "exact" ? HessianMode::exact
-                              : std::string(mode) == "psd" ? HessianMode::projected_psd
-                                                           : HessianMode::gauss_newton;
-        scene.options.step_hessian = m;
-    }
-    if (const char* sc = std::getenv("DRAPE_ANCHOR_SELF")) scene.options.self_contact = std::atoi(sc) != 0;
     Simulator sim(scene.cloth, drape::test::gray_interlock_material(), scene.options);
     sim.set_obstacle(Obstacle(scene.sphere.positions, scene.sphere.faces));
     const int steps = static_cast<int>(std::lround(duration_s / scene.options.time_step_s));
@@ -72,3 +62,16 @@ TEST_CASE("anchor scene N = 32 vs ArcSim 0.3.1", "[cloth][anchor][.bench]") {
     CHECK(r.report.max_penetration_m <= 0.001);
     CHECK(r.report.self_intersections == 0);
 }
+
+TEST_CASE("anchor scene N = 64 vs ArcSim 0.3.1", "[cloth][anchor][.bench]") {
+    const AnchorResult r = run_anchor(64, 2.0, false);
+    std::printf("N=64: centre z %.5f (ArcSim 0.5048), lowest z %.4f, %.1f ms/step (ArcSim 329), "
+                "%d Newton iterations, %d failed steps, penetration %.2f mm, %d self-intersections\n",
+                r.centre_z, r.lowest_z, r.seconds_per_step * 1e3, r.newton_iterations, r.failed_steps,
+                r.report.max_penetration_m * 1e3, r.report.self_intersections);
+    CHECK(r.failed_steps == 0);
+    CHECK(std::abs(r.centre_z - 0.5048) <= 0.002);
+    CHECK(r.report.max_penetration_m <= 0.001);
+    CHECK(r.report.self_intersections == 0);
+}
+

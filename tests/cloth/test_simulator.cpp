@@ -6,6 +6,7 @@
 #include "gray_interlock_fixture.hpp"
 
 #include <cmath>
+#include <vector>
 #include <cstdlib>
 
 using namespace drape::cloth;
@@ -200,4 +201,103 @@ TEST_CASE("a cantilevered strip deflects less when its bending is stiffer",
         CHECK(drop < previous);
         previous = drop;
     }
+}
+
+namespace {
+
+// Large-deflection elastica of a cantilever under its own weight: θ'' = −(q/EI)(L − s) cos θ,
+// θ(0) = 0, θ'(L) = 0 (θ downward from horizontal, s arc length from the clamp), solved by
+// shooting on θ'(0) with RK4. Returns the tip's vertical deflection ∫ sin θ ds.
+double elastica_tip_deflection(double weight_per_rigidity, double length) {
+    const int steps = 4000;
+    const double ds = length / steps;
+    auto integrate = [&](double slope0, double* deflection) {
+        double th = 0, w = slope0, y = 0;  // θ, θ', deflection
+        auto f = [&](double s, double t, double dt) {
+            (void)dt;
+            return -weight_per_rigidity * (length - s) * std::cos(t);
+        };
+        for (int i = 0; i < steps; ++i) {
+            const double s = i * ds;
+            // RK4 on (θ, θ', y) with θ'' = f(s, θ), y' = sin θ.
+            const double k1t = w, k1w = f(s, th, 0), k1y = std::sin(th);
+            const double k2t = w + 0.5 * ds * k1w, k2w = f(s + 0.5 * ds, th + 0.5 * ds * k1t, 0),
+                         k2y = std::sin(th + 0.5 * ds * k1t);
+            const double k3t = w + 0.5 * ds * k2w, k3w = f(s + 0.5 * ds, th + 0.5 * ds * k2t, 0),
+                         k3y = std::sin(th + 0.5 * ds * k2t);
+            const double k4t = w + ds * k3w, k4w = f(s + ds, th + ds * k3t, 0), k4y = std::sin(th + ds * k3t);
+            th += ds / 6 * (k1t + 2 * k2t + 2 * k3t + k4t);
+            w += ds / 6 * (k1w + 2 * k2w + 2 * k3w + k4w);
+            y += ds / 6 * (k1y + 2 * k2y + 2 * k3y + k4y);
+        }
+        if (deflection) *deflection = y;
+        return w;  // θ'(L): must be 0
+    };
+    double lo = 0, hi = 100 / length;
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (integrate(mid, nullptr) > 0 ? hi : lo) = mid;
+    }
+    double deflection = 0;
+    integrate(0.5 * (lo + hi), &deflection);
+    return deflection;
+}
+
+}  // namespace
+
+// Hidden: OPEN (issue 3). The simulated tip deflects 11.8 % (n = 30), 10.5 % (n = 60) and
+// 14.6 % (n = 15) more than the elastica with D = k/4 — the calibration that the cylinder
+// test confirms for uniform bending — independent of the stretching stiffness. Until the
+// discrete rigidity under non-uniform bending is understood this acceptance check fails;
+// run it with: drape_cloth_tests "[elastica]".
+TEST_CASE("a cantilevered strip bends under gravity as the large-deflection elastica",
+          "[cloth][simulator][physics][elastica][.eval]") {
+    // 0.15 m x 0.02 m strip along x, 5 mm cells, clamped over its first cell (two columns
+    // pinned, so the clamp is horizontal at x = 5 mm). Constant bending table k: on this
+    // grid the plate rigidity is D = k/4 (see "bending energy of a strip on a cylinder"),
+    // so the elastica sees q/EI = ρ g / D. k is chosen for L/ℓ_b ≈ 2 (ℓ_b = (D/ρg)^⅓),
+    // a clearly large deflection.
+    const int n = 30;
+    const double length = 0.15, width = 0.02, cell = length / n;
+    ClothMesh mesh = make_square_grid(n, length, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(),
+                                      Eigen::Vector3d::UnitY());
+    // Keep the rows with v <= width (4 cells), renumbering.
+    const int rows = static_cast<int>(std::lround(width / cell)) + 1;
+    ClothMesh strip;
+    strip.positions = mesh.positions.topRows((n + 1) * rows);
+    strip.pattern = mesh.pattern.topRows((n + 1) * rows);
+    std::vector<Eigen::Vector3i> kept;
+    for (Eigen::Index f = 0; f < mesh.faces.rows(); ++f)
+        if (mesh.faces.row(f).maxCoeff() < (n + 1) * rows) kept.emplace_back(mesh.faces.row(f).transpose());
+    strip.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
+    for (std::size_t f = 0; f < kept.size(); ++f) strip.faces.row(static_cast<Eigen::Index>(f)) = kept[f].transpose();
+    strip.pattern_faces = strip.faces;
+
+    Material material = gray_interlock();
+    const double rho_g = material.density_kg_per_m2 * 9.8;
+    const double free_length = length - cell;
+    const double bending_length = free_length / 2.0;
+    const double rigidity = rho_g * std::pow(bending_length, 3);  // D (N·m)
+    for (auto& row : material.bending_n_m) row.fill(4 * rigidity);  // k = 4 D
+    SimulatorOptions options;
+    options.max_newton_iterations = 300;
+    Simulator sim(strip, material, options);
+    for (int i = 0; i < strip.vertex_count(); ++i)
+        if (strip.pattern(i, 0) <= cell + 1e-9) sim.pin(i);
+    const StepSummary s = sim.solve_static();
+    INFO(s.brief_report());
+    REQUIRE(s.termination == StepTermination::converged);
+    double tip = 0;
+    int count = 0;
+    for (int i = 0; i < strip.vertex_count(); ++i)
+        if (strip.pattern(i, 0) >= length - 1e-9) {
+            tip += -sim.positions()(i, 2);
+            ++count;
+        }
+    tip /= count;
+    const double expected = elastica_tip_deflection(rho_g / rigidity, free_length);
+    INFO("tip deflection " << tip * 1e3 << " mm, elastica " << expected * 1e3 << " mm (L = "
+                           << free_length << " m, L/l_b = 2)");
+    CHECK(expected > 0.3 * free_length);  // a large deflection, far from the linear regime
+    CHECK(tip == Approx(expected).epsilon(0.03));
 }

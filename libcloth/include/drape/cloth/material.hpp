@@ -10,6 +10,7 @@
 #include <array>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace drape::cloth {
 
@@ -38,13 +39,54 @@ struct Material {
     bool is_valid(std::string* why = nullptr) const;
 };
 
-/// Reads a material in ArcSim's JSON format: {"density": ρ, "stretching": 6 x [4 numbers],
-/// "bending": 3 x [5 numbers]}. Lines starting with `//` (paper.json, aluminium.json) are
-/// accepted as comments. Scales are set to 1.
+/// Descriptive fields of a material file (Drape's own format, docs/materials.md). They do
+/// not affect the simulation; any of them may be empty.
+struct MaterialInfo {
+    std::string name;         ///< short identifier, e.g. "gray-interlock"
+    std::string description;  ///< free text, e.g. garment type and fibre content
+    std::string source;       ///< citation of where the numbers come from
+    std::string license;      ///< terms under which the numbers may be used
+};
+
+/// Reads a material file, detecting the format from its content:
+/// - Drape's own format (docs/materials.md): a JSON object with "format": "drape-material",
+///   "version": 1, SI-named fields, the scales and descriptive fields (returned in `info`).
+///   It holds the Material fields exactly, so load_material(save_material(m)) == m bit for bit.
+/// - otherwise ArcSim's format: {"density": ρ, "stretching": 6 x [4 numbers],
+///   "bending": 3 x [5 numbers]}, whose numbers are already our SI units (see
+///   ../shared/materials/README.md). Scales are set to 1; `info->name` is the file stem.
+/// Lines starting with `//` (ArcSim's paper.json, aluminium.json) are accepted as comments.
+/// \param info if not null, receives the descriptive fields (cleared first).
 /// \throw drape::IoError if the file cannot be read (message names the file).
-/// \throw drape::InvalidInput if the content is not valid JSON, a field is missing, has the
-///        wrong shape or type, or the material is invalid (message names file and field).
-Material load_material(const std::filesystem::path& path);
+/// \throw drape::InvalidInput if the content is not valid JSON, a field is missing, unknown,
+///        has the wrong shape or type, the "format" or "version" is not supported, or the
+///        material is invalid (message names file and field).
+Material load_material(const std::filesystem::path& path, MaterialInfo* info = nullptr);
+
+/// Writes `material` in Drape's own material format (docs/materials.md) with the
+/// descriptive fields of `info`, atomically (a failed write leaves `path` as it was).
+/// Numbers are written in the shortest form that reads back to the same double.
+/// \throw drape::InvalidInput if the material is invalid (Material::is_valid) or a text
+///        field of `info` is not valid UTF-8.
+/// \throw drape::IoError if the file cannot be written (message names the file).
+void save_material(const Material& material, const std::filesystem::path& path,
+                   const MaterialInfo& info = {});
+
+/// The names of the materials built into the library, in a fixed order: the ten fabrics
+/// measured by Wang, O'Brien and Ramamoorthi 2011 and ArcSim's hand-made "paper" and
+/// "aluminium", transcribed from ArcSim 0.3.1's material files (research data, see
+/// docs/materials.md for the citation and license notice).
+std::vector<std::string> builtin_material_names();
+
+/// A built-in material by name (see builtin_material_names), scales 1; equal bit for bit
+/// to loading ArcSim's file of the same name and to data/materials/<name>.json.
+/// \throw drape::InvalidInput if `name` is unknown (the message lists the known names).
+Material builtin_material(const std::string& name);
+
+/// The descriptive fields of a built-in material: name, fabric description, citation of
+/// Wang et al. 2011 / ArcSim and ArcSim's license notice.
+/// \throw drape::InvalidInput if `name` is unknown (the message lists the known names).
+MaterialInfo builtin_material_info(const std::string& name);
 
 /// The interpolated stretching coefficients for one strain state, in N/m, already
 /// multiplied by ArcSim's factor 2 and by the stretching scale. The energy density is

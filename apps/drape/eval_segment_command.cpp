@@ -1,0 +1,341 @@
+// drape eval-segment DIR [--mode strokes|auto|both] [--scale-check] [--limit N] --out RESULT.json
+//
+// Evaluates garment parsing on a folder in the ../shared/data/photos layout
+// (images/NAME.jpg, labels/NAME.png, joints/NAME.json, optional index.csv): per photo and
+// mean IoU per garment against the hand labels, garment-type accuracy and time
+// (docs/vision.md, "Evaluation").
+#include "commands.hpp"
+#include "json_io.hpp"
+#include "vision_json.hpp"
+
+#include <drape/core/errors.hpp>
+#include <drape/vision/classify_garment.hpp>
+#include <drape/vision/garment_result.hpp>
+#include <drape/vision/image_io.hpp>
+#include <drape/vision/segmentation.hpp>
+#include <drape/vision/strokes.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace drape::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+using vision::GarmentPart;
+using vision::GarmentType;
+using vision::LabelRole;
+using vision::LabelTable;
+
+struct EvalArgs {
+    std::string dir;
+    std::string mode = "both";
+    std::string out;
+    int limit = 0;
+    bool scale_check = false;
+    std::vector<std::string> names;
+    vision::SegmentationOptions options;
+};
+
+/// Photos of the folder: index.csv rows (name, category) when present, else images/*.jpg.
+std::vector<std::pair<std::string, std::string>> list_photos(const fs::path& dir) {
+    std::vector<std::pair<std::string, std::string>> out;
+    std::ifstream index(dir / "index.csv");
+    if (index) {
+        std::string line;
+        std::getline(index, line);  // header
+        while (std::getline(index, line)) {
+            if (line.empty()) continue;
+            std::stringstream ss(line);
+            std::string name, category;
+            std::getline(ss, name, ',');
+            std::getline(ss, category, ',');
+            out.emplace_back(name, category);
+        }
+        return out;
+    }
+    std::error_code ec;
+    if (!fs::is_directory(dir / "images", ec))
+        throw IoError("evaluation folder '" + dir.string() + "' has no images/ subfolder");
+    for (const auto& e : fs::directory_iterator(dir / "images"))
+        if (e.path().extension() == ".jpg" || e.path().extension() == ".png")
+            out.emplace_back(e.path().stem().string(), "");
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+cv::Mat role_mask(const cv::Mat& labels, const LabelTable& t, LabelRole role) {
+    cv::Mat m = cv::Mat::zeros(labels.size(), CV_8UC1);
+    for (size_t i = 0; i < labels.total(); ++i)
+        if (t.role(labels.data[i]) == role) m.data[i] = 255;
+    return m;
+}
+
+double iou(const cv::Mat& a, const cv::Mat& b) {
+    const int u = cv::countNonZero(a | b);
+    return u > 0 ? double(cv::countNonZero(a & b)) / u : 1.0;
+}
+
+/// The garments of a parse by part: masks (union of classes of that role) and types.
+struct Parse {
+    std::map<GarmentPart, cv::Mat> masks;
+    std::map<GarmentPart, GarmentType> types;
+};
+
+int largest_class(const cv::Mat& labels, const LabelTable& t, LabelRole role) {
+    int counts[256] = {};
+    for (size_t i = 0; i < labels.total(); ++i) ++counts[labels.data[i]];
+    int best = -1;
+    for (int id = 0; id < 255; ++id)
+        if (t.role(id) == role && counts[id] > 0 && (best < 0 || counts[id] > counts[best])) best = id;
+    return best;
+}
+
+/// Garments of a label map; types listed in `known` win, else they come from the class.
+Parse parse_of(const cv::Mat& labels, const LabelTable& t, const vision::Joints& joints,
+               const std::vector<std::pair<int, GarmentType>>& known) {
+    Parse p;
+    const double min_area = 0.002 * double(labels.total());
+    const std::pair<GarmentPart, LabelRole> parts[] = {{GarmentPart::upper, LabelRole::upper_garment},
+                                                       {GarmentPart::lower, LabelRole::lower_garment},
+                                                       {GarmentPart::full, LabelRole::full_garment}};
+    for (const auto& [part, role] : parts) {
+        const cv::Mat m = role_mask(labels, t, role);
+        if (cv::countNonZero(m) < min_area) continue;
+        p.masks[part] = m;
+        const int id = largest_class(labels, t, role);
+        auto it = std::find_if(known.begin(), known.end(), [id](const auto& k) { return k.first == id; });
+        if (it != known.end()) p.types[part] = it->second;
+        else if (part == GarmentPart::upper)
+            p.types[part] = vision::classify_upper(vision::measure_shape_cues(m, joints));
+        else p.types[part] = vision::garment_type_of_class(m, id, t, joints);
+    }
+    return p;
+}
+
+struct ModeTotals {
+    double iou_sum = 0;
+    int garments = 0;
+    int types_right = 0;
+    double seconds_sum = 0;
+    double seconds_max = 0;
+    int photos = 0;
+    std::map<std::string, std::pair<double, int>> iou_by_type;
+};
+
+using Clock = std::chrono::steady_clock;
+
+nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv::Mat& gt,
+                        const vision::Joints& joints, const Parse& truth,
+                        const vision::SegmentationOptions& options, ModeTotals& totals) {
+    const LabelTable& table = LabelTable::fashionista();
+    vision::Segmentation seg;
+    const auto t0 = Clock::now();
+    vision::SegmentationSummary summary;
+    nlohmann::json j;
+    if (mode == "strokes") {
+        const cv::Mat strokes = vision::simulate_strokes(gt);
+        j["marked_fraction"] = vision::marked_fraction(strokes);
+        const auto ts = Clock::now();
+        summary = vision::segment_with_strokes(photo, strokes, &joints, options, seg);
+        (void)ts;
+    } else {
+        summary = vision::segment_automatic(photo, joints, options, seg);
+    }
+    const auto garments = vision::describe_garments(photo, seg, joints, table, vision::GarmentOptions{});
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    const Parse pred = parse_of(seg.labels, table, joints, seg.garment_types);
+    nlohmann::json per = nlohmann::json::array();
+    double photo_sum = 0;
+    for (const auto& [part, gt_mask] : truth.masks) {
+        cv::Mat pm;
+        if (part == GarmentPart::full) {
+            pm = cv::Mat::zeros(gt.size(), CV_8UC1);
+            for (const auto& [pp, m] : pred.masks) pm |= m;
+        } else if (pred.masks.count(part)) {
+            pm = pred.masks.at(part);
+        } else if (pred.masks.count(GarmentPart::full)) {
+            pm = pred.masks.at(GarmentPart::full);
+        } else {
+            pm = cv::Mat::zeros(gt.size(), CV_8UC1);
+        }
+        const double v = iou(gt_mask, pm);
+        const GarmentType tt = truth.types.at(part);
+        std::string pt = "none";
+        bool right = false;
+        if (part == GarmentPart::full) {
+            right = pred.types.count(GarmentPart::full) > 0;
+            if (right) pt = "dress";
+            else if (pred.types.count(GarmentPart::lower))
+                pt = std::string(vision::to_string(pred.types.at(GarmentPart::lower)));
+        } else if (pred.types.count(part)) {
+            pt = std::string(vision::to_string(pred.types.at(part)));
+            right = pred.types.at(part) == tt;
+        } else if (pred.types.count(GarmentPart::full)) {
+            pt = "dress";
+        }
+        per.push_back({{"true_type", std::string(vision::to_string(tt))},
+                       {"predicted_type", pt}, {"type_correct", right}, {"iou", v}});
+        photo_sum += v;
+        totals.iou_sum += v;
+        totals.garments += 1;
+        totals.types_right += right;
+        auto& bt = totals.iou_by_type[std::string(vision::to_string(tt))];
+        bt.first += v;
+        bt.second += 1;
+    }
+    totals.seconds_sum += seconds;
+    totals.seconds_max = std::max(totals.seconds_max, seconds);
+    totals.photos += 1;
+    j["garments"] = per;
+    j["mean_iou"] = truth.masks.empty() ? 0.0 : photo_sum / double(truth.masks.size());
+    j["seconds"] = seconds;
+    j["segmentation"] = summary.brief_report();
+    return j;
+}
+
+/// Wrinkle density of each hand-labelled garment at scales 0.5, 1, 2.
+nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision::Joints& joints,
+                           std::vector<double>& ratios) {
+    const LabelTable& table = LabelTable::fashionista();
+    nlohmann::json j = nlohmann::json::object();
+    std::map<int, std::vector<double>> densities;
+    for (double s : {1.0, 0.5, 2.0}) {
+        vision::Segmentation seg;
+        cv::resize(photo, seg.labels, cv::Size(), s, s, s < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+        const cv::Mat img = seg.labels;
+        cv::resize(gt, seg.labels, img.size(), 0, 0, cv::INTER_NEAREST);
+        seg.occlusion = vision::occlusion_mask(seg.labels, table);
+        for (const auto& g : vision::describe_garments(img, seg, joints.scaled(s), table, {}))
+            densities[g.label_id].push_back(g.wrinkles.density_per_m2);
+    }
+    for (const auto& [id, d] : densities) {
+        if (d.size() != 3) continue;
+        j[table.name(id)] = {{"P_x1", d[0]}, {"P_x0.5", d[1]}, {"P_x2", d[2]}};
+        if (d[0] > 0) {
+            ratios.push_back(d[1] / d[0]);
+            ratios.push_back(d[2] / d[0]);
+        }
+    }
+    return j;
+}
+
+void run_eval(const EvalArgs& args) {
+    if (args.mode != "strokes" && args.mode != "auto" && args.mode != "both" && args.mode != "none")
+        throw InvalidInput("--mode '" + args.mode + "' is not one of strokes, auto, both, none");
+    const fs::path dir(args.dir);
+    auto photos = list_photos(dir);
+    if (!args.names.empty()) {
+        std::vector<std::pair<std::string, std::string>> kept;
+        for (const auto& p : photos)
+            if (std::find(args.names.begin(), args.names.end(), p.first) != args.names.end())
+                kept.push_back(p);
+        photos = kept;
+    }
+    if (args.limit > 0 && int(photos.size()) > args.limit) photos.resize(size_t(args.limit));
+    if (photos.empty()) throw InvalidInput("no photo to evaluate in '" + args.dir + "'");
+    std::vector<std::string> modes;
+    if (args.mode == "strokes" || args.mode == "both") modes.push_back("strokes");
+    if (args.mode == "auto" || args.mode == "both") modes.push_back("auto");
+    const LabelTable& table = LabelTable::fashionista();
+    std::map<std::string, ModeTotals> totals;
+    std::vector<double> ratios;
+    nlohmann::json per_photo = nlohmann::json::array();
+    for (const auto& [name, category] : photos) {
+        const cv::Mat photo = vision::load_image(dir / "images" / (name + ".jpg"));
+        const cv::Mat gt = vision::load_label_map(dir / "labels" / (name + ".png"), "labels");
+        const vision::Joints joints =
+            read_vision_joints(dir / "joints" / (name + ".json"), photo.cols, photo.rows);
+        const Parse truth = parse_of(gt, table, joints, {});
+        nlohmann::json pj;
+        pj["name"] = name;
+        pj["category"] = category;
+        if (!category.empty() && truth.types.count(GarmentPart::lower) &&
+            std::string(vision::to_string(truth.types.at(GarmentPart::lower))) != category)
+            pj["warning"] = "category in index.csv differs from the labelled lower garment";
+        std::cout << name << " (" << category << "):";
+        for (const auto& m : modes) {
+            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, totals[m]);
+            std::cout << "  " << m << " IoU " << std::fixed << std::setprecision(3)
+                      << pj[m]["mean_iou"].get<double>() << " (" << std::setprecision(2)
+                      << pj[m]["seconds"].get<double>() << " s)";
+            for (const auto& g : pj[m]["garments"])
+                std::cout << " " << g["true_type"].get<std::string>() << "->"
+                          << g["predicted_type"].get<std::string>();
+        }
+        if (args.scale_check) pj["wrinkle_scale_check"] = scale_check(photo, gt, joints, ratios);
+        std::cout << "\n";
+        per_photo.push_back(pj);
+    }
+    nlohmann::json result;
+    result["format"] = "drape.segment_eval";
+    result["version"] = 1;
+    result["folder"] = args.dir;
+    result["photos"] = per_photo;
+    for (const auto& [m, t] : totals) {
+        nlohmann::json by_type = nlohmann::json::object();
+        for (const auto& [type, v] : t.iou_by_type)
+            by_type[type] = {{"mean_iou", v.first / v.second}, {"garments", v.second}};
+        result["summary"][m] = {{"photos", t.photos},
+                                {"garments", t.garments},
+                                {"mean_garment_iou", t.iou_sum / std::max(1, t.garments)},
+                                {"type_accuracy", double(t.types_right) / std::max(1, t.garments)},
+                                {"mean_seconds_per_photo", t.seconds_sum / std::max(1, t.photos)},
+                                {"max_seconds_per_photo", t.seconds_max},
+                                {"iou_by_true_type", by_type}};
+        std::cout << m << ": mean garment IoU " << std::setprecision(3)
+                  << t.iou_sum / std::max(1, t.garments) << " over " << t.garments
+                  << " garments, type accuracy "
+                  << 100.0 * t.types_right / std::max(1, t.garments) << " %, "
+                  << std::setprecision(2) << t.seconds_sum / std::max(1, t.photos)
+                  << " s/photo (max " << t.seconds_max << " s)\n";
+    }
+    if (args.scale_check) {
+        int within = 0;
+        double worst = 1.0;
+        for (double r : ratios) {
+            within += (r >= 0.8 && r <= 1.2);
+            if (std::abs(std::log(r)) > std::abs(std::log(worst))) worst = r;
+        }
+        result["summary"]["wrinkle_scale_check"] = {{"ratios", ratios.size()},
+                                                    {"within_20_percent", within},
+                                                    {"worst_ratio", worst}};
+        std::cout << "wrinkle density x0.5 / x2 vs x1: " << within << " of " << ratios.size()
+                  << " ratios within +-20 %, worst " << worst << "\n";
+    }
+    write_json_file(args.out, result);
+}
+
+}  // namespace
+
+void add_eval_segment_command(CLI::App& app) {
+    auto args = std::make_shared<EvalArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "eval-segment", "Evaluate garment parsing on a folder in the ../shared/data/photos "
+                        "layout: IoU per garment vs the hand labels, type accuracy, time");
+    cmd->add_option("dir", args->dir, "folder with images/, labels/, joints/ (and index.csv)")->required();
+    cmd->add_option("--mode", args->mode, "strokes | auto | both (default) | none (only with --scale-check)");
+    cmd->add_option("--out", args->out, "result JSON to write")->required();
+    cmd->add_option("--limit", args->limit, "evaluate only the first N photos");
+    cmd->add_option("--names", args->names, "evaluate only these photos (NAME without extension)");
+    cmd->add_flag("--scale-check", args->scale_check,
+                  "also measure the wrinkle density of the hand-labelled garments at x0.5 and x2");
+    cmd->add_option("--smoothness", args->options.smoothness,
+                    "SegmentationOptions::smoothness (Potts weight; for tuning)");
+    cmd->add_option("--stroke-distance-weight", args->options.stroke_distance_weight,
+                    "SegmentationOptions::stroke_distance_weight (for tuning)");
+    cmd->callback([args] { run_eval(*args); });
+}
+
+}  // namespace drape::app

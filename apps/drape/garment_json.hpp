@@ -1,0 +1,40 @@
+// JSON forms of the garment sizing parameters G (app layer), keyed by the paper's names:
+// skirt {l1, r1, r2, alpha}; pants {w1, w2, w3, w4, h1, h2, h3}; tshirt {r, w1, w2, h1,
+// h2, l1}; dress {"bodice": {tshirt keys}, "skirt": {skirt keys}}. Centimetres, degrees.
+#pragma once
+
+#include <drape/garment/dress.hpp>
+#include <drape/garment/pants.hpp>
+#include <drape/garment/pattern.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace drape::app {
+
+enum class GarmentType { skirt, pants, tshirt, dress };
+
+/// "skirt", "pants", "tshirt" or "dress". \throw InvalidInput naming the value otherwise.
+GarmentType garment_type_from_name(const std::string& name);
+std::string garment_type_name(GarmentType type);
+
+/// A sizing of any template; only the member of `type` is used.
+struct GarmentSizing {
+    GarmentType type = GarmentType::skirt;
+    garment::SkirtSizing skirt;
+    garment::PantsSizing pants;
+    garment::TShirtSizing tshirt;
+    garment::DressSizing dress;
+};
+
+/// Reads G.json for `type`. Absent keys keep the template defaults; unknown keys and
+/// non-numbers throw InvalidInput naming the file and key (range checks happen when the
+/// pattern is made).
+GarmentSizing sizing_from_json(GarmentType type, const nlohmann::json& j, const std::string& file);
+nlohmann::json to_json(const GarmentSizing& sizing);
+
+/// The pattern of a sizing (make_circle_skirt, make_pants, make_tshirt or make_dress).
+garment::Pattern make_pattern(const GarmentSizing& sizing);
+
+}  // namespace drape::app

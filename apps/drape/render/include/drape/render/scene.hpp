@@ -1,0 +1,63 @@
+// What the renderer draws: triangle meshes (body, garments) with materials and label ids,
+// and an optional photo-studio stage (floor, backdrop). World frame: metres, +Y up, the body
+// faces +Z.
+#pragma once
+
+#include <drape/render/material.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace drape::render {
+
+struct Mesh {
+    std::string name;    ///< used in error messages ("body", "garment 1", a file name)
+    Eigen::MatrixXd V;   ///< #V x 3 world positions, metres
+    Eigen::MatrixXi F;   ///< #F x 3 vertex indices (either winding: surfaces are two-sided)
+    Eigen::MatrixXd N;   ///< #V x 3 vertex normals, or empty: area-weighted smooth normals
+    Eigen::MatrixXd UV;  ///< #V x 2 texture coordinates, or empty (prints then use x, y)
+    Material material;
+    int label = 0;       ///< written to the label map, 0..255 (labels.txt ids for garments)
+};
+
+/// A horizontal floor under the meshes (infinite for the camera: 40 m square).
+struct Floor {
+    bool enabled = false;
+    double height_m = 0.0;  ///< world y of the floor
+    Material material;      ///< default: warm mid grey
+    int label = 0;
+    Floor();
+};
+
+/// A vertical backdrop behind the meshes at z = -distance_m, joined to the floor (when
+/// the floor is on) by a quarter-cylinder cove of `cove_radius_m`, like a studio sweep.
+struct Backdrop {
+    bool enabled = false;
+    double distance_m = 2.0;   ///< the wall is the plane z = -distance_m
+    double cove_radius_m = 0.8;
+    double height_m = 8.0;     ///< top of the wall above the floor
+    Material material;         ///< default: light grey
+    int label = 0;
+    Backdrop();
+};
+
+struct Scene {
+    std::vector<Mesh> meshes;
+    Floor floor;
+    Backdrop backdrop;
+
+    /// Throws drape::InvalidInput naming the mesh and the problem (no triangles, bad shapes,
+    /// indices out of range, non-finite values, bad material, label outside 0..255).
+    void validate() const;
+};
+
+/// Area-weighted vertex normals (#V x 3, unit; zero rows for unreferenced vertices).
+Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+/// The stage geometry of `scene` (floor, backdrop, cove) as meshes (UV = world x and the
+/// arc length along the floor/wall profile). Empty when both are disabled.
+std::vector<Mesh> stage_meshes(const Scene& scene);
+
+}  // namespace drape::render

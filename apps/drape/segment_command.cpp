@@ -1,0 +1,126 @@
+// drape segment IMAGE --joints J.json [--strokes S.png] [--hint TYPE] [--height M] --out DIR
+// drape strokes LABELS.png --out S.png
+#include "commands.hpp"
+#include "image_io.hpp"
+#include "json_io.hpp"
+#include "vision_json.hpp"
+
+#include <drape/core/errors.hpp>
+#include <drape/vision/garment_result.hpp>
+#include <drape/vision/image_io.hpp>
+#include <drape/vision/segmentation.hpp>
+#include <drape/vision/strokes.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+
+namespace drape::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SegmentArgs {
+    std::string image;
+    std::string joints;
+    std::string strokes;
+    std::string hint;
+    double height_m = 1.70;
+    std::string out;
+};
+
+void run_segment(const SegmentArgs& args) {
+    const cv::Mat photo = vision::load_image(args.image);
+    const vision::Joints joints = read_vision_joints(args.joints, photo.cols, photo.rows);
+    vision::SegmentationOptions options;
+    if (!args.hint.empty()) {
+        options.hint = vision::parse_garment_type(args.hint);
+        if (!options.hint)
+            throw InvalidInput("--hint '" + args.hint + "' is not one of t-shirt, tank-top, "
+                               "long-sleeve-top, dress, skirt, pants, shorts");
+    }
+    if (!(args.height_m > 0.5 && args.height_m < 2.6))
+        throw InvalidInput("--height " + std::to_string(args.height_m) +
+                           " m is outside 0.5 .. 2.6 m");
+    make_output_dir(args.out);
+
+    vision::Segmentation seg;
+    vision::SegmentationSummary summary;
+    std::string mode;
+    if (!args.strokes.empty()) {
+        const cv::Mat strokes = vision::load_label_map(args.strokes, "strokes");
+        summary = vision::segment_with_strokes(photo, strokes, &joints, options, seg);
+        mode = "strokes";
+    } else {
+        summary = vision::segment_automatic(photo, joints, options, seg);
+        mode = "auto";
+    }
+    std::cerr << "drape segment: " << summary.brief_report() << "\n";
+    vision::GarmentOptions gopt;
+    gopt.wrinkles.person_height_m = args.height_m;
+    const std::vector<vision::GarmentResult> garments =
+        vision::describe_garments(photo, seg, joints, options.table, gopt, options.hint);
+    cv::Mat garment_mask = cv::Mat::zeros(photo.size(), CV_8UC1);
+    std::vector<vision::Fold> folds;
+    for (const auto& g : garments) {
+        garment_mask |= seg.labels == g.label_id;
+        folds.insert(folds.end(), g.folds.begin(), g.folds.end());
+        std::cerr << "  " << vision::to_string(g.type) << " (class " << g.label_id << " "
+                  << g.class_name << "): " << g.area_px << " px, occluded "
+                  << g.occlusion_fraction << ", " << g.wrinkles.brief_report() << "\n";
+    }
+    if (garments.empty()) std::cerr << "drape segment: no garment found\n";
+    const fs::path dir(args.out);
+    write_png(dir / "labels.png", seg.labels);
+    write_png(dir / "occlusion.png", seg.occlusion);
+    write_png(dir / "overlay.png", vision::draw_segmentation(photo, seg.labels));
+    write_png(dir / "folds.png", vision::draw_folds(photo, garment_mask, folds));
+    write_json_file(dir / "garments.json",
+                    garments_json(garments, summary, args.image, photo.cols, photo.rows, mode,
+                                  args.height_m));
+}
+
+}  // namespace
+
+void add_segment_command(CLI::App& app) {
+    auto args = std::make_shared<SegmentArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "segment", "Parse the garments of a photo (labels.png, garments.json, overlay.png, "
+                   "folds.png, occlusion.png in DIR): automatic from the joints, or guided by "
+                   "user strokes");
+    cmd->add_option("image", args->image, "the photo (JPEG/PNG; EXIF orientation is applied)")->required();
+    cmd->add_option("--joints", args->joints,
+                    "JSON {\"joints\": 14 [x, y] pixels (right_ankle ... head), optional "
+                    "\"pixel_origin\": one_based (default) | zero_based | corner}")
+        ->required();
+    cmd->add_option("--strokes", args->strokes,
+                    "8-bit PNG of the photo's size: class ids of labels.txt where marked, 255 "
+                    "elsewhere (see `drape strokes`)");
+    cmd->add_option("--hint", args->hint,
+                    "garment type hint: t-shirt, tank-top, long-sleeve-top, dress, skirt, pants, shorts");
+    cmd->add_option("--height", args->height_m, "the person's stature in metres (default 1.70)");
+    cmd->add_option("--out", args->out, "output folder (created if absent)")->required();
+    cmd->callback([args] { run_segment(*args); });
+}
+
+void add_strokes_command(CLI::App& app) {
+    auto labels = std::make_shared<std::string>();
+    auto out = std::make_shared<std::string>();
+    CLI::App* cmd = app.add_subcommand(
+        "strokes", "Simulate user strokes from a ground-truth label map (docs/vision.md): a few "
+                   "medial-axis strokes per region, at most 3 % of the pixels");
+    cmd->add_option("labels", *labels, "8-bit class-id PNG (labels.txt ids)")->required();
+    cmd->add_option("--out", *out, "the strokes PNG to write (255 = unmarked)")->required();
+    cmd->callback([labels, out] {
+        const cv::Mat gt = vision::load_label_map(*labels, "labels");
+        const cv::Mat strokes = vision::simulate_strokes(gt);
+        write_png(*out, strokes);
+        std::cerr << "drape strokes: marked " << 100.0 * vision::marked_fraction(strokes)
+                  << " % of the pixels\n";
+    });
+}
+
+}  // namespace drape::app

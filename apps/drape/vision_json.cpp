@@ -1,0 +1,138 @@
+#include "vision_json.hpp"
+
+#include "json_io.hpp"
+
+#include <drape/core/errors.hpp>
+
+#include <cmath>
+
+namespace drape::app {
+
+vision::Joints read_vision_joints(const std::filesystem::path& path, int width, int height,
+                                  double* shift_out) {
+    const std::string file = path.string();
+    const nlohmann::json j = read_json_file(path);
+    reject_unknown_keys(j, {"joints", "joint_names", "image_size", "pixel_origin"}, file);
+    double shift = -0.5;  // one-based (MATLAB): pixel 1's centre is at 1
+    if (j.contains("pixel_origin")) {
+        const std::string o = j["pixel_origin"].is_string() ? j["pixel_origin"].get<std::string>()
+                                                             : j["pixel_origin"].dump();
+        if (o == "one_based") shift = -0.5;
+        else if (o == "zero_based") shift = 0.5;
+        else if (o == "corner") shift = 0.0;
+        else
+            throw InvalidInput(file + ": field 'pixel_origin' = " + o +
+                               " is not one of one_based, zero_based, corner");
+    }
+    if (!j.contains("joints") || !j["joints"].is_array() || j["joints"].size() != 14)
+        throw InvalidInput(file + ": field 'joints' must be an array of 14 [x, y] pixel pairs "
+                                  "(right_ankle ... head)");
+    if (j.contains("joint_names")) {
+        const auto& names = j["joint_names"];
+        bool ok = names.is_array() && names.size() == 14;
+        for (size_t i = 0; ok && i < names.size(); ++i)
+            ok = names[i].is_string() && names[i].get<std::string>() == vision::kJointNames[i];
+        if (!ok)
+            throw InvalidInput(file + ": field 'joint_names' must list the 14 joints in the "
+                                      "Fashionista order (right_ankle ... head); got " + names.dump());
+    }
+    if (j.contains("image_size")) {
+        const auto& s = j["image_size"];
+        if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() ||
+            s[0].get<double>() != width || s[1].get<double>() != height)
+            throw InvalidInput(file + ": field 'image_size' = " + s.dump() +
+                               " does not match the photo's " + std::to_string(width) + " x " +
+                               std::to_string(height) + " pixels");
+    }
+    vision::Joints out;
+    for (size_t i = 0; i < 14; ++i) {
+        const auto& p = j["joints"][i];
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+            throw InvalidInput(file + ": joint " + std::to_string(i) + " (" +
+                               std::string(vision::kJointNames[i]) + ") must be [x, y] numbers, got " +
+                               p.dump());
+        out.px[i] = Eigen::Vector2d(p[0].get<double>() + shift, p[1].get<double>() + shift);
+    }
+    try {
+        out.validate(width, height);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(file + ": " + e.what());
+    }
+    if (shift_out) *shift_out = shift;
+    return out;
+}
+
+namespace {
+
+nlohmann::json polygon(const Eigen::Matrix<double, Eigen::Dynamic, 2>& m) {
+    nlohmann::json a = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < m.rows(); ++i) a.push_back({m(i, 0), m(i, 1)});
+    return a;
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+}  // namespace
+
+nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
+                             const vision::SegmentationSummary& summary,
+                             const std::string& image_file, int width, int height,
+                             const std::string& mode, double person_height_m) {
+    static const char* terminations[] = {"ok", "no_garment_found", "failed"};
+    nlohmann::json j;
+    j["format"] = "drape.garments";
+    j["version"] = 1;
+    j["image"] = {{"file", image_file}, {"width", width}, {"height", height}};
+    j["frame"] = "image pixels, origin at the top-left corner, pixel centres at +0.5";
+    j["segmentation"] = {{"mode", mode},
+                         {"termination", terminations[static_cast<int>(summary.termination)]},
+                         {"message", summary.message},
+                         {"seconds", summary.seconds},
+                         {"garments_found", summary.garments_found}};
+    j["person_height_m"] = person_height_m;
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& g : garments) {
+        nlohmann::json e;
+        e["type"] = std::string(vision::to_string(g.type));
+        e["label_id"] = g.label_id;
+        e["class"] = g.class_name;
+        e["area_px"] = g.area_px;
+        e["occlusion_fraction"] = g.occlusion_fraction;
+        nlohmann::json features = nlohmann::json::object();
+        features["body_height_px"] = g.features.body_height_px;
+        for (const auto& [name, v] : g.features.list())
+            features[name] = {{"px", v.first}, {"normalised", v.second}};
+        e["features"] = features;
+        e["cues"] = {{"sleeve_fraction", g.cues.sleeve_fraction},
+                     {"hem_fraction", g.cues.hem_fraction},
+                     {"top_fraction", g.cues.top_fraction},
+                     {"between_legs_fraction", g.cues.between_legs_fraction}};
+        e["wrinkle_density_per_m2"] = number_or_null(g.wrinkles.density_per_m2);
+        e["wrinkles"] = {{"usable", g.wrinkles.usable()},
+                         {"folds", g.wrinkles.folds},
+                         {"edges", g.wrinkles.edges_merged},
+                         {"garment_area_m2", g.wrinkles.garment_area_m2},
+                         {"report", g.wrinkles.brief_report()}};
+        nlohmann::json pieces = nlohmann::json::array();
+        for (const auto& p : g.silhouette) {
+            nlohmann::json holes = nlohmann::json::array();
+            for (const auto& h : p.holes) holes.push_back(polygon(h));
+            pieces.push_back({{"outer", polygon(p.outer)}, {"holes", holes}});
+        }
+        e["silhouette"] = pieces;
+        list.push_back(e);
+    }
+    j["garments"] = list;
+    return j;
+}
+
+void make_output_dir(const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    std::error_code ec2;
+    if (!std::filesystem::is_directory(dir, ec2))
+        throw IoError("cannot create the output folder '" + dir.string() + "'" +
+                      (ec ? ": " + ec.message() : std::string()));
+}
+
+}  // namespace drape::app

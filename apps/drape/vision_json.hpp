@@ -1,0 +1,37 @@
+// JSON and files of the vision commands (segment, eval-segment, strokes): the 14-joint
+// file reader for libvision and the garments.json writer. The library sees typed joints.
+#pragma once
+
+#include <drape/vision/garment_result.hpp>
+#include <drape/vision/joints.hpp>
+#include <drape/vision/segmentation.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace drape::app {
+
+/// Reads a 14-joint file (../shared/data/photos/joints format): {"joints": [[x, y] x 14],
+/// optional "joint_names" (must be the Fashionista order), "image_size" [w, h] (must match
+/// width x height), "pixel_origin": one_based (default) | zero_based | corner}, and returns
+/// the joints in libvision's image frame. `*shift` receives the offset added to the file's
+/// values (to write coordinates back in the file's convention: subtract it).
+/// \throw drape::IoError (unreadable), drape::InvalidInput naming the file and field.
+vision::Joints read_vision_joints(const std::filesystem::path& file, int width, int height,
+                                  double* shift = nullptr);
+
+/// garments.json: {"format": "drape.garments", "version": 1, "image": {...},
+/// "segmentation": {...}, "garments": [...]} (docs/vision.md). Polygon coordinates are
+/// written in the libvision image frame (pixel centres at +0.5).
+nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
+                             const vision::SegmentationSummary& summary,
+                             const std::string& image_file, int width, int height,
+                             const std::string& mode, double person_height_m);
+
+/// Creates `dir` (and parents). \throw drape::IoError when it cannot.
+void make_output_dir(const std::filesystem::path& dir);
+
+}  // namespace drape::app

@@ -1,0 +1,62 @@
+// Initial garment registration (paper section 4.3): the meshed pattern is wrapped around
+// the body at rest, its skeleton rigidly aligned to the body's joints, skinned to the body
+// pose (linear blend skinning with weights copied from the nearest body vertices), and
+// pushed out of the body with an as-rigid-as-possible deformation under a
+// non-penetration constraint.
+#pragma once
+
+#include <drape/body/body_model.hpp>
+#include <drape/body/pose.hpp>
+#include <drape/garment/garment_mesh.hpp>
+#include <drape/garment/pattern.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+namespace drape::garment {
+
+struct DressingOptions {
+    double clearance_m = 0.008;       ///< garment-body gap enforced, (0, 0.1] m
+    int max_iterations = 15;          ///< push-out + ARAP rounds, >= 1
+    double constraint_weight = 50.0;  ///< weight of the push targets in the ARAP solve, > 0
+    bool is_valid(std::string* why = nullptr) const;
+};
+
+enum class DressingTermination { converged, penetration_left };
+
+struct DressingSummary {
+    DressingTermination termination = DressingTermination::converged;
+    std::string message;
+    double alignment_rms_m = 0;   ///< RMS of ||T q_i - t_i|| over the garment joints
+    int iterations = 0;           ///< push-out rounds used
+    int vertices_pushed = 0;      ///< vertices that were inside or too close at some round
+    int vertices_inside = 0;      ///< after registration (inside test on the posed body)
+    double max_seam_gap_m = 0;    ///< largest distance between stitched vertices
+    double wrapped_seam_gap_m = 0;  ///< the same after wrapping and skinning, before push-out
+    double seconds = 0;
+    bool usable() const { return vertices_inside == 0; }
+    std::string brief_report() const;
+};
+
+/// The garment skeleton Q_c: the body joints a pattern's panels wrap around (torso chain
+/// for torso panels, a leg chain per leg panel, an arm chain per sleeve).
+std::vector<body::Joint> garment_skeleton_joints(const Pattern& pattern);
+
+/// The rigid transform T minimising sum ||T q_i - t_i||² (Kabsch), rows of q and t paired.
+/// \throw drape::InvalidInput if sizes differ or fewer than 1 row.
+Eigen::Isometry3d rigid_align(const Eigen::MatrixX3d& q, const Eigen::MatrixX3d& t);
+
+/// Initial 3D positions (#V x 3, world, metres) of `mesh` dressed on the shaped body in
+/// `pose`. Panels of the built-in templates are wrapped on cylinders (cones for flared
+/// panels) around the torso, leg and arm axes; panels of other patterns start at their
+/// placement hints.
+/// \throw drape::InvalidInput if the options, mesh or body are inconsistent.
+DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
+                              const body::BodyModel& model, const body::ShapedBody& shaped,
+                              const body::Pose& pose, const DressingOptions& options,
+                              Eigen::MatrixX3d& positions);
+
+}  // namespace drape::garment

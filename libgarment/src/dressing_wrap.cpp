@@ -1,0 +1,292 @@
+// Wrapping the meshed panels around the body at rest (initial registration, first step).
+#include "dressing_internal.hpp"
+
+#include <drape/core/errors.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace drape::garment::detail {
+
+namespace {
+
+using body::Joint;
+using body::index;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kCapBlendCm = 8.0;
+constexpr double kCrotchBlendCm = 8.0;  // pants: leg tubes -> pelvis tube above the crotch  // sleeve length over which the cap leaves the armhole
+
+enum class Role { torso, sleeve, skirt, leg, hint };
+
+Role role_of(const Pattern& pattern, const std::string& panel) {
+    const std::string& g = pattern.name;
+    const bool sleeve = panel.find("sleeve") != std::string::npos;
+    if (g == "tshirt" || g == "tank_top") return sleeve ? Role::sleeve : Role::torso;
+    if (g == "circle_skirt") return Role::skirt;
+    if (g == "pants") return Role::leg;
+    if (g == "dress") {
+        if (sleeve) return Role::sleeve;
+        return panel.rfind("skirt_", 0) == 0 ? Role::skirt : Role::torso;
+    }
+    return Role::hint;
+}
+
+// Horizontal extent [min x, max x] of a closed outline at height y (clamped inside it).
+std::pair<double, double> slice(const std::vector<Eigen::Vector2d>& poly, double y) {
+    double lo_y = 1e300, hi_y = -1e300;
+    for (const auto& p : poly) lo_y = std::min(lo_y, p.y()), hi_y = std::max(hi_y, p.y());
+    y = std::clamp(y, lo_y + 1e-6, hi_y - 1e-6);
+    double a = 1e300, b = -1e300;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const Eigen::Vector2d& p = poly[i];
+        const Eigen::Vector2d& q = poly[(i + 1) % poly.size()];
+        if ((p.y() - y) * (q.y() - y) > 0 || p.y() == q.y()) continue;
+        const double x = p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x());
+        a = std::min(a, x);
+        b = std::max(b, x);
+    }
+    if (a > b) a = b = 0;
+    return {a, std::max(b, a + 1e-3)};
+}
+
+// Heights between which both halves of the outline (left and right of its middle) exist,
+// so that a sloped top (a raised centre back) does not pinch the slice.
+std::pair<double, double> full_height_range(const std::vector<Eigen::Vector2d>& poly) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& p : poly) lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+    const double mid = 0.5 * (lo + hi);
+    double top[2] = {-1e300, -1e300}, bottom[2] = {1e300, 1e300};
+    for (const auto& p : poly) {
+        const int side = p.x() < mid ? 0 : 1;
+        top[side] = std::max(top[side], p.y());
+        bottom[side] = std::min(bottom[side], p.y());
+    }
+    return {std::max(bottom[0], bottom[1]), std::min(top[0], top[1])};
+}
+
+// Ramanujan's perimeter of an ellipse with semi-axes a, b.
+double ellipse_perimeter(double a, double b) {
+    return kPi * (3 * (a + b) - std::sqrt((3 * a + b) * (a + 3 * b)));
+}
+
+double top_of(const Panel& panel) {
+    Eigen::Vector2d lo, hi;
+    panel.bounds(&lo, &hi);
+    return hi.y();
+}
+
+// (x, z) of a chain of joints at height y, interpolated between consecutive joints.
+Eigen::Vector2d chain_at_height(const Joints& J, const std::vector<Joint>& chain, double y) {
+    std::vector<Eigen::Vector3d> pts;
+    for (Joint j : chain) pts.push_back(J.row(index(j)).transpose());
+    std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return a.y() < b.y(); });
+    if (y <= pts.front().y()) return {pts.front().x(), pts.front().z()};
+    if (y >= pts.back().y()) return {pts.back().x(), pts.back().z()};
+    for (size_t i = 0; i + 1 < pts.size(); ++i)
+        if (y <= pts[i + 1].y()) {
+            const double t = (y - pts[i].y()) / std::max(1e-9, pts[i + 1].y() - pts[i].y());
+            const Eigen::Vector3d p = (1 - t) * pts[i] + t * pts[i + 1];
+            return {p.x(), p.z()};
+        }
+    return {pts.back().x(), pts.back().z()};
+}
+
+// Point and unit direction at arc length s along a joint chain (extrapolated at the end).
+void chain_at_length(const Joints& J, const std::vector<Joint>& chain, double s,
+                     Eigen::Vector3d* point, Eigen::Vector3d* dir) {
+    for (size_t i = 0; i + 1 < chain.size(); ++i) {
+        const Eigen::Vector3d a = J.row(index(chain[i])), b = J.row(index(chain[i + 1]));
+        const double len = (b - a).norm();
+        if (s <= len || i + 2 == chain.size()) {
+            *dir = (b - a).normalized();
+            *point = a + s * *dir;
+            return;
+        }
+        s -= len;
+    }
+}
+
+}  // namespace
+
+std::vector<std::array<int, 2>> mesh_edges(const Eigen::MatrixX3i& faces) {
+    std::set<std::array<int, 2>> set;
+    for (Eigen::Index f = 0; f < faces.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+            set.insert({std::min(a, b), std::max(a, b)});
+        }
+    return {set.begin(), set.end()};
+}
+
+Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, const Joints& J,
+                             const std::function<Eigen::Vector2d(double)>& torso_section) {
+    const int nv = mesh.cloth.vertex_count();
+    Eigen::MatrixX3d out(nv, 3);
+    const double neck_y = J(index(Joint::neck), 1), waist_y = J(index(Joint::spine), 1);
+    // Heights at which the templates hang: tops from the neck, skirts and pants from the waist
+    // (a dress's skirt from the bodice hem).
+    double skirt_top_y = waist_y, pants_waist_cm = 0, pants_inseam_cm = 0, torso_half_width_cm = 0;
+    for (size_t p = 0; p < pattern.panels.size(); ++p) {
+        const Panel& panel = pattern.panels[p];
+        if (pattern.name == "dress" && panel.name == "bodice_front")
+            skirt_top_y = neck_y - 0.01 * top_of(panel);
+        if (pattern.name == "pants" && panel.name == "front_right") {
+            pants_waist_cm = top_of(panel);
+            double x_max = -1e300;  // the crotch point is the panel's innermost (largest x) corner
+            for (const Edge& e : panel.edges)
+                if (e.start.x() > x_max) x_max = e.start.x(), pants_inseam_cm = e.start.y();
+        }
+        if (role_of(pattern, panel.name) == Role::torso && pattern.placements[p].body_part == BodyPart::front_torso) {
+            Eigen::Vector2d lo, hi;
+            panel.bounds(&lo, &hi);
+            torso_half_width_cm = 0.5 * (hi.x() - lo.x());
+        }
+    }
+    const std::vector<Joint> torso = {Joint::pelvis, Joint::spine, Joint::chest, Joint::neck};
+    const double crotch_y = waist_y + 0.01 * (pants_inseam_cm - pants_waist_cm);
+    // The wrapped front armhole of each side: (fraction from underarm to shoulder tip,
+    // position), from the front torso panel's edge 2 (left, +x) or 6 (right).
+    int front_torso = -1;
+    for (size_t p = 0; p < pattern.panels.size(); ++p)
+        if (role_of(pattern, pattern.panels[p].name) == Role::torso &&
+            pattern.placements[p].body_part == BodyPart::front_torso)
+            front_torso = int(p);
+    std::vector<std::pair<double, Eigen::Vector3d>> slits[2];
+    const auto armhole_slit = [&](bool left) -> const std::vector<std::pair<double, Eigen::Vector3d>>& {
+        auto& slit = slits[left ? 0 : 1];
+        if (!slit.empty() || front_torso < 0) return slit;
+        const int edge = left ? 2 : 6;
+        const int n_edges = int(pattern.panels[size_t(front_torso)].edges.size());
+        if (n_edges != 8) return slit;
+        for (int v = 0; v < nv; ++v) {
+            if (mesh.panel_of_vertex(v) != front_torso) continue;
+            double f = -1;
+            if (mesh.boundary_edge(v) == edge) f = mesh.boundary_fraction(v);
+            if (mesh.boundary_edge(v) == edge + 1 && mesh.boundary_fraction(v) == 0.0) f = 1.0;
+            if (f < 0) continue;
+            slit.emplace_back(left ? f : 1.0 - f, out.row(v).transpose());
+        }
+        std::sort(slit.begin(), slit.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        return slit;
+    };
+
+    for (size_t p = 0; p < pattern.panels.size(); ++p) {
+        const Panel& panel = pattern.panels[p];
+        const PanelPlacement& place = pattern.placements[p];
+        const Role role = role_of(pattern, panel.name);
+        std::vector<Eigen::Vector2d> poly = panel.outline(0.5);
+        const double top = top_of(panel);
+        // Skirt panels are sliced in polar coordinates about their waist-arc centre
+        // (x = angle from the downward vertical, y = -radius), so the waist lands on one
+        // horizontal ring and the hem hangs below it.
+        Eigen::Vector2d skirt_centre(0, 0);
+        double skirt_r1 = 0;
+        const auto polar = [&](const Eigen::Vector2d& a) {
+            const Eigen::Vector2d d = a - skirt_centre;
+            return Eigen::Vector2d(std::atan2(d.x(), -d.y()), -d.norm());
+        };
+        if (role == Role::skirt && panel.edges.size() > 2 && panel.edges[2].kind == EdgeKind::arc) {
+            panel.edges[2].arc_geometry(&skirt_centre, &skirt_r1, nullptr, nullptr);
+            for (auto& a : poly) a = polar(a);
+        }
+        const auto [y_full_lo, y_full_hi] = full_height_range(poly);
+        const bool back = place.body_part == BodyPart::back_torso ||
+                          (role == Role::leg && panel.name.rfind("back", 0) == 0);
+        for (int v = 0; v < nv; ++v) {
+            if (mesh.panel_of_vertex(v) != int(p)) continue;
+            const Eigen::Vector2d q0 = mesh.panel_point_cm.row(v).transpose();
+            if (role == Role::hint) {
+                out.row(v) = place.to_world_m(q0).transpose();
+                continue;
+            }
+            const Eigen::Vector2d q = skirt_r1 > 0 ? polar(q0) : q0;
+            const auto [x_lo, x_hi] = slice(poly, std::clamp(q.y(), y_full_lo, y_full_hi));
+            const double t = std::clamp((q.x() - 0.5 * (x_lo + x_hi)) / (x_hi - x_lo), -0.5, 0.5);
+            const double width = skirt_r1 > 0 ? -q.y() * (x_hi - x_lo) : x_hi - x_lo;  // cm
+            if (role == Role::sleeve) {
+                const bool left = place.body_part == BodyPart::left_sleeve;
+                const std::vector<Joint> arm =
+                    left ? std::vector<Joint>{Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist}
+                         : std::vector<Joint>{Joint::right_shoulder, Joint::right_elbow, Joint::right_wrist};
+                Eigen::Vector3d c, a;
+                chain_at_length(J, arm, 0.0, &c, &a);
+                const Eigen::Vector2d axis = chain_at_height(J, torso, c.y());
+                const double d0 = std::clamp((0.01 * torso_half_width_cm * 2 / kPi - std::abs(c.x() - axis.x())) /
+                                                 std::max(0.3, std::abs(a.x())), 0.0, 0.15);
+                chain_at_length(J, arm, d0 + 0.01 * (top - q.y()), &c, &a);
+                const Eigen::Vector3d up = (Eigen::Vector3d::UnitY() - a.y() * a).normalized();
+                Eigen::Vector3d front = a.cross(up);
+                if (front.z() < 0) front = -front;
+                const double theta = 2 * kPi * t, r = 0.01 * width / (2 * kPi);
+                const double side = left ? -1.0 : 1.0;  // +x of a left sleeve runs to the back
+                const Eigen::Vector3d tube = c + r * (std::cos(theta) * up + side * std::sin(theta) * front);
+                // Near the cap the sleeve lies on the front armhole (already wrapped: torso
+                // panels come first): cap middle at the shoulder tip, cap ends at the
+                // underarm; it blends into the arm tube over kCapBlendCm.
+                const auto& slit = armhole_slit(left);
+                const double blend = std::clamp((top - q.y()) / std::min(kCapBlendCm, 0.5 * top), 0.0, 1.0);
+                if (blend >= 1.0 || slit.size() < 2) {
+                    out.row(v) = tube.transpose();
+                    continue;
+                }
+                const double tip = 1.0 - 2.0 * std::abs(t);  // 1 at the shoulder tip
+                size_t k = 1;
+                while (k + 1 < slit.size() && slit[k].first < tip) ++k;
+                const double u = std::clamp((tip - slit[k - 1].first) / std::max(1e-12, slit[k].first - slit[k - 1].first), 0.0, 1.0);
+                const Eigen::Vector3d on_slit = (1 - u) * slit[k - 1].second + u * slit[k].second;
+                out.row(v) = ((1 - blend) * on_slit + blend * tube).transpose();
+                continue;
+            }
+            double y = 0;
+            Eigen::Vector2d centre;
+            if (role == Role::torso) y = neck_y + 0.01 * (q.y() - top);
+            if (role == Role::skirt) y = skirt_r1 > 0 ? skirt_top_y - 0.01 * (-q.y() - skirt_r1) : skirt_top_y + 0.01 * q.y();
+            if (role == Role::leg) y = waist_y + 0.01 * (q.y() - pants_waist_cm);
+            if (role == Role::leg && y < J(index(place.body_part == BodyPart::left_leg ? Joint::left_hip : Joint::right_hip), 1)) {
+                const bool left = place.body_part == BodyPart::left_leg;
+                centre = chain_at_height(J, left ? std::vector<Joint>{Joint::left_hip, Joint::left_knee, Joint::left_ankle}
+                                                 : std::vector<Joint>{Joint::right_hip, Joint::right_knee, Joint::right_ankle}, y);
+            } else if (role == Role::leg) {
+                // Above the hip joints the two leg tubes keep the hip joints' axes.
+                const Joint hip = place.body_part == BodyPart::left_leg ? Joint::left_hip : Joint::right_hip;
+                centre = Eigen::Vector2d(J(index(hip), 0), J(index(hip), 2));
+            } else {
+                centre = chain_at_height(J, torso, y);
+            }
+            // Each panel covers half a turn: the front from -X to +X through +Z, the back
+            // (turned about Y) from +X to -X through -Z. Torso and skirt panels wrap an
+            // ellipse shaped like the torso section with the garment's girth (front + back).
+            const double theta = kPi * t;
+            double ax = 0.01 * width / kPi, az = ax;
+            if (role != Role::leg) {
+                const Eigen::Vector2d sec = torso_section(y).cwiseMax(0.02);
+                const double s_ = 2 * 0.01 * width / ellipse_perimeter(sec.x(), sec.y());
+                ax = s_ * sec.x();
+                az = s_ * sec.y();
+            }
+            const double sx = back ? -1.0 : 1.0;
+            out.row(v) << centre.x() + sx * ax * std::sin(theta), y, centre.y() + sx * az * std::cos(theta);
+            if (role == Role::leg) {
+                // Above the crotch the four pants panels share one tube around the pelvis,
+                // a quarter each (side seam at -+X, centre front/back on the middle line);
+                // the leg tubes blend into it over kCrotchBlendCm.
+                const double w = std::clamp((y - crotch_y) / (0.01 * kCrotchBlendCm), 0.0, 1.0);
+                if (w > 0) {
+                    const Eigen::Vector2d c = chain_at_height(J, torso, y);
+                    const Eigen::Vector2d sec = torso_section(y).cwiseMax(0.02);
+                    const double s_ = 4 * 0.01 * width / ellipse_perimeter(sec.x(), sec.y());
+                    const bool generic = panel.name == "front_right" || panel.name == "back_left";
+                    const double phi = (generic ? -0.25 : 0.25) * kPi + 0.5 * kPi * t;
+                    const Eigen::Vector3d pelvis(c.x() + sx * s_ * sec.x() * std::sin(phi), y,
+                                                 c.y() + sx * s_ * sec.y() * std::cos(phi));
+                    const double ws = w * w * (3 - 2 * w);
+                    out.row(v) = ((1 - ws) * out.row(v).transpose() + ws * pelvis).transpose();
+                }
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace drape::garment::detail

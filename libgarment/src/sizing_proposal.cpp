@@ -1,0 +1,105 @@
+#include <drape/garment/sizing_proposal.hpp>
+
+#include <drape/core/errors.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::garment {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Stature ratios for lengths that BodyMeasurements does not measure (adult averages,
+// ANSUR II order of magnitude): navel (waist) height, neck opening radius, armhole depth,
+// short-sleeve length, knee-length skirt and sleeve-opening girth.
+constexpr double kWaistHeightRatio = 0.60;
+constexpr double kNeckRadiusRatio = 0.045;
+constexpr double kArmholeDepthRatio = 0.125;
+constexpr double kSleeveLengthRatio = 0.11;
+constexpr double kSkirtLengthRatio = 0.30;
+constexpr double kSleeveOpeningRatio = 0.20;
+constexpr double kKneeToThighGirth = 0.65;
+constexpr double kAnkleToKneeOpening = 0.88;
+
+void check_measurements(const body::BodyMeasurements& m, const Ease& ease) {
+    std::string why;
+    require(ease.is_valid(&why), "garment sizing: ", why);
+    const std::pair<const char*, double> values[] = {
+        {"height_m", m.height_m},           {"chest_girth_m", m.chest_girth_m},
+        {"waist_girth_m", m.waist_girth_m}, {"hip_girth_m", m.hip_girth_m},
+        {"thigh_girth_m", m.thigh_girth_m}, {"shoulder_height_m", m.shoulder_height_m},
+        {"crotch_height_m", m.crotch_height_m}};
+    for (const auto& [name, v] : values)
+        require(std::isfinite(v) && v > 0, "garment sizing: body measurement ", name, " = ", v,
+                " must be positive");
+}
+
+double cm(double metres) { return 100.0 * metres; }
+
+SkirtSizing skirt_for_waist(double waist_arc_cm, double height_cm) {
+    SkirtSizing g;
+    g.l1 = waist_arc_cm;
+    g.r1 = waist_arc_cm / (kPi / 2);  // a quarter circle per panel: a half-circle skirt
+    g.alpha = 90.0;
+    g.r2 = kSkirtLengthRatio * height_cm;
+    return g;
+}
+
+}  // namespace
+
+bool Ease::is_valid(std::string* why) const {
+    const std::pair<const char*, double> values[] = {
+        {"waist_cm", waist_cm}, {"hip_cm", hip_cm}, {"chest_cm", chest_cm}, {"leg_cm", leg_cm}};
+    for (const auto& [name, v] : values)
+        if (!(std::isfinite(v) && v >= 0 && v <= 60)) {
+            if (why) *why = std::string("Ease::") + name + " = " + std::to_string(v) +
+                            " must be in [0, 60] cm";
+            return false;
+        }
+    return true;
+}
+
+SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, const Ease& ease) {
+    check_measurements(m, ease);
+    return skirt_for_waist((cm(m.waist_girth_m) + ease.waist_cm) / 2, cm(m.height_m));
+}
+
+PantsSizing propose_pants_sizing(const body::BodyMeasurements& m, const Ease& ease) {
+    check_measurements(m, ease);
+    const double waist_height = kWaistHeightRatio * cm(m.height_m);
+    PantsSizing g;
+    g.w1 = cm(m.waist_girth_m) + ease.waist_cm;
+    g.w2 = std::max(cm(m.hip_girth_m) + ease.hip_cm, g.w1);
+    g.w3 = kKneeToThighGirth * cm(m.thigh_girth_m) + ease.leg_cm;
+    g.w4 = kAnkleToKneeOpening * g.w3;
+    g.h1 = waist_height - 3.0;  // hem 3 cm above the floor
+    g.h3 = waist_height - cm(m.crotch_height_m) + 2.0;
+    g.h2 = g.h3 + 5.0;
+    return g;
+}
+
+TShirtSizing propose_tshirt_sizing(const body::BodyMeasurements& m, const Ease& ease) {
+    check_measurements(m, ease);
+    const double height = cm(m.height_m);
+    TShirtSizing g;
+    g.r = kNeckRadiusRatio * height;
+    g.w1 = kSleeveOpeningRatio * height;
+    g.w2 = (cm(m.chest_girth_m) + ease.chest_cm) / 2;
+    g.h2 = cm(m.shoulder_height_m) + 4.0 - (cm(m.crotch_height_m) + 2.0);  // hem near the crotch
+    g.h1 = g.h2 - kTShirtShoulderDrop - kArmholeDepthRatio * height;
+    g.l1 = kSleeveLengthRatio * height;
+    return g;
+}
+
+DressSizing propose_dress_sizing(const body::BodyMeasurements& m, const Ease& ease) {
+    DressSizing g;
+    g.bodice = propose_tshirt_sizing(m, ease);
+    const double height = cm(m.height_m);
+    g.bodice.h2 = cm(m.shoulder_height_m) + 4.0 - kWaistHeightRatio * height;
+    g.bodice.h1 = g.bodice.h2 - kTShirtShoulderDrop - kArmholeDepthRatio * height;
+    g.skirt = skirt_for_waist(g.bodice.w2, height);
+    return g;
+}
+
+}  // namespace drape::garment

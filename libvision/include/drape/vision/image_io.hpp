@@ -1,0 +1,43 @@
+// Reading photos and label maps for libvision, with the EXIF orientation applied and size
+// limits checked, so that a corrupt or enormous file gives a clear error instead of a crash
+// or an out-of-memory kill.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace drape::vision {
+
+/// Limits on the images libvision reads. Defaults allow any ordinary photo.
+struct ImageLimits {
+    int max_width_px = 12000;                 ///< > 0
+    int max_height_px = 12000;                ///< > 0
+    std::int64_t max_pixels = 50'000'000;     ///< > 0, width x height
+    std::int64_t max_file_bytes = 200'000'000;///< > 0, checked before decoding
+    int min_side_px = 16;                     ///< >= 1; smaller images are rejected
+
+    bool is_valid(std::string* why = nullptr) const;
+};
+
+/// Reads a photo as 8-bit 3-channel BGR, rotated upright by its EXIF orientation.
+/// \throw drape::IoError naming the file when it is missing, unreadable or not an image;
+///        drape::InvalidInput when it breaks `limits` (naming the size and the limit).
+cv::Mat load_image(const std::filesystem::path& path, const ImageLimits& limits = {});
+
+/// Reads a class-id map (8-bit single-channel PNG, ids of LabelTable) or a stroke map
+/// (same, 255 = unmarked). EXIF orientation is not applied: PNG maps have none.
+/// \param what names the map in messages ("labels", "strokes").
+/// \throw drape::IoError (missing/unreadable), drape::InvalidInput (not 8-bit 1-channel,
+///        or breaking `limits`).
+cv::Mat load_label_map(const std::filesystem::path& path, const std::string& what,
+                       const ImageLimits& limits = {});
+
+/// Checks an in-memory image against `limits` and type (CV_8UC3 or CV_8UC1 as `type`).
+/// \throw drape::InvalidInput naming `what`, the size and the broken limit.
+void check_image(const cv::Mat& image, int type, const std::string& what,
+                 const ImageLimits& limits = {});
+
+}  // namespace drape::vision

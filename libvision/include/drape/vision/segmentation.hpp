@@ -1,0 +1,109 @@
+// Garment parsing (paper section 4.2, "Garment Parsing"): labels {background, skin, hair,
+// each garment, occluders} for every pixel, either guided by user strokes or seeded
+// automatically from the 14 joints.
+//
+// Both modes share two stages: (1) a multi-label graph cut (alpha-expansion with
+// contrast-sensitive Potts smoothness, colour histogram models re-estimated GrabCut-style)
+// at a working resolution, then (2) boundary refinement at full resolution: an edge-aware
+// re-clustering into SLIC superpixels, each taking the majority label of its pixels, so
+// that region borders follow the image's colour edges.
+#pragma once
+
+#include <drape/vision/garment_type.hpp>
+#include <drape/vision/joints.hpp>
+#include <drape/vision/label_table.hpp>
+
+#include <opencv2/core.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace drape::vision {
+
+struct SegmentationOptions {
+    /// Stage 1 runs on the photo shrunk so that its longer side is at most this.
+    int working_max_side_px = 300;          ///< >= 32
+    /// Weight of the contrast-sensitive Potts term (GrabCut's gamma, per unit edge).
+    double smoothness = 12.0;               ///< >= 0
+    int histogram_bins = 16;                ///< per channel, in [4, 64]
+    /// Outer rounds of (graph cut, re-estimate colour models); alpha-expansion cycles per round.
+    int rounds = 3;                         ///< >= 1
+    int expansion_cycles = 2;               ///< >= 1
+    /// Strokes mode: cost per body height of distance from the label's nearest stroke
+    /// (a spatial prior that separates classes of similar colour).
+    double stroke_distance_weight = 30.0;   ///< >= 0
+    /// Automatic mode: weight of the pose-derived spatial prior.
+    double layout_weight = 1.0;             ///< >= 0
+    bool refine_boundaries = true;
+    /// SLIC superpixel size for the refinement, as a fraction of the body height (or of
+    /// the image height in strokes mode without joints).
+    double superpixel_fraction = 0.016;     ///< > 0
+    /// Connected pieces of a class smaller than this fraction of the image are merged into
+    /// their surroundings.
+    double min_piece_fraction = 0.0005;     ///< >= 0
+    /// Automatic mode: a garment-type hint (e.g. skirt, dress) overrides the classifier
+    /// for garments of its part (GarmentPart).
+    std::optional<GarmentType> hint;
+    /// Class table of the stroke/label ids.
+    LabelTable table = LabelTable::fashionista();
+
+    bool is_valid(std::string* why = nullptr) const;
+};
+
+enum class SegmentationTermination { ok, no_garment_found, failed };
+
+struct SegmentationSummary {
+    SegmentationTermination termination = SegmentationTermination::failed;
+    std::string message;
+    int labels_used = 0;            ///< distinct classes in the result
+    int garments_found = 0;
+    double seconds_graph_cut = 0;
+    double seconds_refinement = 0;
+    double seconds = 0;
+
+    /// True when at least one garment was found.
+    bool usable() const { return termination == SegmentationTermination::ok; }
+    std::string brief_report() const;
+};
+
+/// A parse of one photo.
+struct Segmentation {
+    cv::Mat labels;     ///< CV_8UC1, photo size, class ids of the options' LabelTable
+    /// CV_8UC1, 255 where something (hair, arms, bag, belt, ...) lies in front of a
+    /// garment: non-garment pixels inside a garment's outline, and occluder/skin/hair
+    /// pixels touching a garment. Later stages must not read these borders as garment edges.
+    cv::Mat occlusion;
+    /// Automatic mode: the type found for each garment id present in `labels`.
+    std::vector<std::pair<int, GarmentType>> garment_types;
+};
+
+/// User-assisted parsing: `strokes` (CV_8UC1, photo size) holds class ids where marked and
+/// kUnmarked (255) elsewhere; every class to appear in the result needs a stroke, and the
+/// background (id 0) must be marked. Stroked pixels keep their class.
+/// \param joints optional; sets the superpixel scale from the body height when given.
+/// \throw drape::InvalidInput for a non-BGR image, strokes of another size/type, no
+///        background or no stroke at all, ids unknown to the table, invalid options.
+SegmentationSummary segment_with_strokes(const cv::Mat& image_bgr, const cv::Mat& strokes,
+                                         const Joints* joints,
+                                         const SegmentationOptions& options,
+                                         Segmentation& result);
+
+/// Automatic parsing seeded from the joints: body-part regions give the initial colour
+/// models of upper garment, lower garment, skin, hair and background; rounds of graph
+/// cuts refine them; each garment is then classified from its mask geometry relative to
+/// the joints (classify_garment.hpp) and written with label_id_of(type). A photo where the
+/// upper and lower regions share one colour model and meet at the waist is a dress.
+/// \throw drape::InvalidInput for a non-BGR image, joints off the image, invalid options.
+SegmentationSummary segment_automatic(const cv::Mat& image_bgr, const Joints& joints,
+                                      const SegmentationOptions& options,
+                                      Segmentation& result);
+
+/// The occlusion mask of a label map (see Segmentation::occlusion).
+cv::Mat occlusion_mask(const cv::Mat& labels, const LabelTable& table);
+
+/// The photo with every class tinted in a fixed colour per id (background left as is) and
+/// class borders outlined; for overlay.png.
+cv::Mat draw_segmentation(const cv::Mat& image_bgr, const cv::Mat& labels);
+
+}  // namespace drape::vision

@@ -1,0 +1,91 @@
+// The average wrinkle density P of a garment (paper section 4.2, "Image Information
+// Extraction", after Popa et al. 2009): fold edges from multi-scale ridge/valley detection
+// on the shading, smoothed by low-curvature quadric fits, merged across small gaps, paired
+// into folds; unpaired edges are dropped. P = folds per square metre of garment.
+//
+// Every length scale is a fraction of the body height in pixels, so P does not change
+// when the photo is resized.
+#pragma once
+
+#include <drape/vision/joints.hpp>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include <string>
+#include <vector>
+
+namespace drape::vision {
+
+struct WrinkleOptions {
+    double person_height_m = 1.70;   ///< > 0; the stature that turns pixels into metres
+    /// Gaussian scales of the Hessian ridge filter, fractions of the body height.
+    std::vector<double> scale_fractions = {0.006, 0.009, 0.013};
+    /// The garment is resampled so that the body is this many pixels tall before filtering.
+    double working_body_height_px = 400;  ///< >= 100
+    /// Threshold on the scale-normalised ridge strength sigma^2 |lambda| of the luminance
+    /// in [0, 1] (about the depth of a shading groove, as a fraction of white).
+    double ridge_threshold = 0.012;  ///< > 0
+    double min_edge_fraction = 0.025;    ///< drop edges shorter than this x body height
+    double merge_gap_fraction = 0.02;    ///< merge pieces whose ends are this close
+    double merge_angle_deg = 20;         ///< ... and whose directions differ by less
+    double max_curvature_fraction = 4.0; ///< |quadric coefficient| x edge length^2 / length
+    double pair_min_gap_fraction = 0.004;///< ridge-valley distance of a fold, min ...
+    double pair_max_gap_fraction = 0.03; ///< ... and max, x body height
+    double pair_angle_deg = 20;          ///< max direction difference of a pair
+    double pair_min_overlap = 0.5;       ///< overlap along the edges / shorter length
+    /// Mask border band (x body height) where edges are ignored: the silhouette boundary
+    /// and occlusion borders are not folds.
+    double border_fraction = 0.008;
+    /// A fold whose ridge/valley overlap is at least this x body height counts as one fold
+    /// in P; shorter folds count in proportion to their length (0 = every fold counts 1).
+    double full_fold_fraction = 0.1;
+
+    bool is_valid(std::string* why = nullptr) const;
+};
+
+/// One smoothed fold edge: a quadric curve sampled as a polyline, image frame pixels.
+struct FoldEdge {
+    std::vector<Eigen::Vector2d> points_px;
+    bool bright = false;  ///< a bright ridge (lit crest) or a dark valley (crease)
+};
+
+/// A fold: a bright ridge and a dark valley running side by side.
+struct Fold {
+    FoldEdge ridge;
+    FoldEdge valley;
+};
+
+enum class WrinkleTermination { ok, garment_too_small, failed };
+
+struct WrinkleSummary {
+    WrinkleTermination termination = WrinkleTermination::failed;
+    std::string message;
+    int edges_detected = 0;       ///< after quadric fitting and the length filter
+    int edges_merged = 0;         ///< after merging
+    int folds = 0;                ///< paired folds found
+    double fold_count = 0;        ///< folds weighted by length (WrinkleOptions::full_fold_fraction)
+    double garment_area_px = 0;
+    double garment_area_m2 = 0;
+    double density_per_m2 = 0;    ///< P = fold_count / garment_area_m2
+    double seconds = 0;
+
+    bool usable() const { return termination == WrinkleTermination::ok; }
+    std::string brief_report() const;
+};
+
+/// Detects the folds of a garment and its wrinkle density P.
+/// \param image_bgr CV_8UC3 photo
+/// \param mask CV_8UC1 garment mask of the photo's size (non-zero = garment)
+/// \param occlusion optional CV_8UC1 mask (empty Mat = none) whose borders are ignored
+/// \param folds receives the folds when not null
+/// \throw drape::InvalidInput on type/size mismatches or invalid options.
+WrinkleSummary detect_wrinkles(const cv::Mat& image_bgr, const cv::Mat& mask,
+                               const cv::Mat& occlusion, const Joints& joints,
+                               const WrinkleOptions& options, std::vector<Fold>* folds);
+
+/// The photo, darkened outside `mask`, with each fold's ridge (yellow) and valley (blue)
+/// drawn and joined.
+cv::Mat draw_folds(const cv::Mat& image_bgr, const cv::Mat& mask, const std::vector<Fold>& folds);
+
+}  // namespace drape::vision

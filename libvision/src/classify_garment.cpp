@@ -1,0 +1,153 @@
+#include <drape/vision/classify_garment.hpp>
+
+#include "mask_geometry.hpp"
+
+#include <drape/core/errors.hpp>
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::vision {
+
+namespace detail {
+
+cv::Mat main_pieces(const cv::Mat& mask, double fraction) {
+    cv::Mat comp, stats, cent;
+    const int n = cv::connectedComponentsWithStats(mask != 0, comp, stats, cent, 8, CV_32S);
+    int largest = 0;
+    for (int c = 1; c < n; ++c) largest = std::max(largest, stats.at<int>(c, cv::CC_STAT_AREA));
+    cv::Mat out = cv::Mat::zeros(mask.size(), CV_8UC1);
+    for (int c = 1; c < n; ++c)
+        if (stats.at<int>(c, cv::CC_STAT_AREA) >= fraction * largest) out.setTo(255, comp == c);
+    return out;
+}
+
+bool covered(const cv::Mat& mask, const Eigen::Vector2d& p, int radius) {
+    const int cx = int(std::floor(p.x())), cy = int(std::floor(p.y()));
+    for (int y = std::max(0, cy - radius); y <= std::min(mask.rows - 1, cy + radius); ++y)
+        for (int x = std::max(0, cx - radius); x <= std::min(mask.cols - 1, cx + radius); ++x)
+            if (mask.at<std::uint8_t>(y, x) && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius)
+                return true;
+    return false;
+}
+
+int row_percentile(const cv::Mat& mask, double q) {
+    std::vector<long> per_row(static_cast<size_t>(mask.rows), 0);
+    long total = 0;
+    for (int y = 0; y < mask.rows; ++y) {
+        per_row[static_cast<size_t>(y)] = cv::countNonZero(mask.row(y));
+        total += per_row[static_cast<size_t>(y)];
+    }
+    if (total == 0) return -1;
+    const double target = q * double(total);
+    long acc = 0;
+    for (int y = 0; y < mask.rows; ++y) {
+        acc += per_row[static_cast<size_t>(y)];
+        if (acc >= target && acc > 0) return y;
+    }
+    return mask.rows - 1;
+}
+
+int row_width(const cv::Mat& mask, int y, int* runs) {
+    if (runs) *runs = 0;
+    if (y < 0 || y >= mask.rows) return 0;
+    const auto* r = mask.ptr<std::uint8_t>(y);
+    int w = 0;
+    bool in = false;
+    for (int x = 0; x < mask.cols; ++x) {
+        if (r[x]) {
+            ++w;
+            if (!in && runs) ++*runs;
+            in = true;
+        } else {
+            in = false;
+        }
+    }
+    return w;
+}
+
+double polyline_x_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                     const Eigen::Vector2d& c, double y) {
+    auto on = [y](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+        if (std::abs(q.y() - p.y()) < 1e-9) return p.x();
+        const double t = std::clamp((y - p.y()) / (q.y() - p.y()), 0.0, 1.0);
+        return p.x() + t * (q.x() - p.x());
+    };
+    return y <= b.y() ? on(a, b) : on(b, c);
+}
+
+Eigen::Vector2d between_legs(const Joints& j, double y) {
+    const double xr = polyline_x_at(j[Joint::right_hip], j[Joint::right_knee], j[Joint::right_ankle], y);
+    const double xl = polyline_x_at(j[Joint::left_hip], j[Joint::left_knee], j[Joint::left_ankle], y);
+    return {0.5 * (xr + xl), y};
+}
+
+double sleeve_run(const cv::Mat& mask, const Eigen::Vector2d& shoulder,
+                  const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand, int radius,
+                  double max_gap, double* arm_length) {
+    const double l1 = (elbow - shoulder).norm(), l2 = (hand - elbow).norm();
+    *arm_length = l1 + l2;
+    double run = 0, gap_start = -1;
+    for (double s = 0; s <= l1 + l2; s += 1.0) {
+        const Eigen::Vector2d p = s <= l1 ? shoulder + (elbow - shoulder) * (l1 > 0 ? s / l1 : 0)
+                                          : elbow + (hand - elbow) * (l2 > 0 ? (s - l1) / l2 : 0);
+        if (covered(mask, p, radius)) {
+            run = s;
+            gap_start = -1;
+        } else {
+            if (gap_start < 0) gap_start = s;
+            if (s - gap_start > max_gap) break;
+        }
+    }
+    return run;
+}
+
+}  // namespace detail
+
+GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j) {
+    using namespace detail;
+    require(!full_mask.empty() && full_mask.type() == CV_8UC1, "measure_shape_cues: mask must be CV_8UC1");
+    const cv::Mat mask = main_pieces(full_mask);
+    GarmentShapeCues c;
+    const double H = j.body_height_px();
+    const int radius = std::max(1, int(std::lround(0.008 * H)));
+    double len_r = 0, len_l = 0;
+    const double run_r = sleeve_run(mask, j[Joint::right_shoulder], j[Joint::right_elbow],
+                                    j[Joint::right_hand], radius, 0.02 * H, &len_r);
+    const double run_l = sleeve_run(mask, j[Joint::left_shoulder], j[Joint::left_elbow],
+                                    j[Joint::left_hand], radius, 0.02 * H, &len_l);
+    c.sleeve_fraction = std::max(len_r > 0 ? run_r / len_r : 0.0, len_l > 0 ? run_l / len_l : 0.0);
+    const double hip_y = j.mid_hip().y(), ankle_y = j.mid_ankle().y(),
+                 sh_y = j.mid_shoulder().y();
+    const int bottom = row_percentile(mask, 0.98), top = row_percentile(mask, 0.02);
+    if (bottom < 0) return c;
+    c.hem_fraction = (bottom + 0.5 - hip_y) / std::max(1.0, ankle_y - hip_y);
+    c.top_fraction = (hip_y - (top + 0.5)) / std::max(1.0, hip_y - sh_y);
+    // Between the legs, over the lower 40 % of the garment below the crotch.
+    const double crotch = hip_y + 0.15 * (j.mid_knee().y() - hip_y);
+    const double y0 = std::max(crotch, bottom - 0.4 * (bottom - std::max<double>(top, hip_y)));
+    int rows = 0, hits = 0;
+    for (int y = int(std::ceil(y0)); y <= bottom - 0.03 * (bottom - top); ++y) {
+        ++rows;
+        if (covered(mask, between_legs(j, y + 0.5), radius)) ++hits;
+    }
+    c.between_legs_fraction = rows > 0 ? double(hits) / rows : 0.0;
+    return c;
+}
+
+GarmentType classify_upper(const GarmentShapeCues& c) {
+    if (c.sleeve_fraction < 0.12) return GarmentType::tank_top;
+    if (c.sleeve_fraction >= 0.6) return GarmentType::long_sleeve_top;
+    return GarmentType::t_shirt;
+}
+
+GarmentType classify_lower(const GarmentShapeCues& c) {
+    // Long garments are pants: standing legs often touch, so the between-legs cue cannot
+    // tell them from a maxi skirt (a known confusion, docs/vision.md).
+    if (c.hem_fraction >= 0.75) return GarmentType::pants;
+    return c.between_legs_fraction >= 0.5 ? GarmentType::skirt : GarmentType::shorts;
+}
+
+}  // namespace drape::vision

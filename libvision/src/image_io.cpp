@@ -1,0 +1,83 @@
+#include <drape/vision/image_io.hpp>
+
+#include <drape/core/errors.hpp>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <system_error>
+
+namespace drape::vision {
+
+bool ImageLimits::is_valid(std::string* why) const {
+    auto fail = [&](const char* m) { if (why) *why = m; return false; };
+    if (max_width_px <= 0) return fail("max_width_px must be > 0");
+    if (max_height_px <= 0) return fail("max_height_px must be > 0");
+    if (max_pixels <= 0) return fail("max_pixels must be > 0");
+    if (max_file_bytes <= 0) return fail("max_file_bytes must be > 0");
+    if (min_side_px < 1) return fail("min_side_px must be >= 1");
+    return true;
+}
+
+void check_image(const cv::Mat& image, int type, const std::string& what,
+                 const ImageLimits& limits) {
+    std::string why;
+    require(limits.is_valid(&why), "ImageLimits: ", why);
+    require(!image.empty(), what, " is empty");
+    require(image.type() == type, what, " has OpenCV type ", image.type(), ", expected ",
+            type == CV_8UC3 ? "8-bit 3-channel (BGR)" : "8-bit single-channel");
+    require(image.cols <= limits.max_width_px && image.rows <= limits.max_height_px &&
+                static_cast<std::int64_t>(image.cols) * image.rows <= limits.max_pixels,
+            what, " is too large: ", image.cols, " x ", image.rows, " px (limits ",
+            limits.max_width_px, " x ", limits.max_height_px, ", ", limits.max_pixels,
+            " pixels)");
+    require(image.cols >= limits.min_side_px && image.rows >= limits.min_side_px, what,
+            " is too small: ", image.cols, " x ", image.rows, " px (min side ",
+            limits.min_side_px, ")");
+}
+
+namespace {
+
+cv::Mat read(const std::filesystem::path& path, int flags, const std::string& what,
+             const ImageLimits& limits) {
+    std::string why;
+    require(limits.is_valid(&why), "ImageLimits: ", why);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw IoError("cannot read " + what + " '" + path.string() + "': file missing");
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (ec) throw IoError("cannot read " + what + " '" + path.string() + "': " + ec.message());
+    require(static_cast<std::int64_t>(bytes) <= limits.max_file_bytes, what, " '",
+            path.string(), "' is too large: ", bytes, " bytes (limit ", limits.max_file_bytes,
+            ")");
+    cv::Mat image;
+    try {
+        image = cv::imread(path.string(), flags);
+    } catch (const cv::Exception& e) {
+        throw IoError("cannot read " + what + " '" + path.string() + "': " + e.what());
+    }
+    if (image.empty())
+        throw IoError("cannot read " + what + " '" + path.string() +
+                      "': not a readable image (PNG, JPEG, ...) or larger than OpenCV's limit");
+    return image;
+}
+
+}  // namespace
+
+cv::Mat load_image(const std::filesystem::path& path, const ImageLimits& limits) {
+    // IMREAD_COLOR applies the EXIF orientation (IMREAD_IGNORE_ORIENTATION is not set).
+    cv::Mat image = read(path, cv::IMREAD_COLOR, "photo", limits);
+    check_image(image, CV_8UC3, "photo '" + path.string() + "'", limits);
+    return image;
+}
+
+cv::Mat load_label_map(const std::filesystem::path& path, const std::string& what,
+                       const ImageLimits& limits) {
+    cv::Mat map = read(path, cv::IMREAD_UNCHANGED, what, limits);
+    require(map.type() == CV_8UC1, what, " '", path.string(),
+            "' must be an 8-bit single-channel PNG of class ids (got ", map.channels(),
+            " channel(s), depth code ", map.depth(), ")");
+    check_image(map, CV_8UC1, what + " '" + path.string() + "'", limits);
+    return map;
+}
+
+}  // namespace drape::vision

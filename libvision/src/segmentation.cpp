@@ -1,0 +1,414 @@
+#include <drape/vision/segmentation.hpp>
+
+#include <drape/vision/classify_garment.hpp>
+#include <drape/vision/image_io.hpp>
+
+#include "alpha_expansion.hpp"
+#include "body_layout.hpp"
+#include "colour_model.hpp"
+#include "superpixels.hpp"
+
+#include <drape/core/errors.hpp>
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace drape::vision {
+
+bool SegmentationOptions::is_valid(std::string* why) const {
+    auto fail = [&](const char* m) { if (why) *why = m; return false; };
+    if (working_max_side_px < 32) return fail("working_max_side_px must be >= 32");
+    if (!(smoothness >= 0)) return fail("smoothness must be >= 0");
+    if (histogram_bins < 4 || histogram_bins > 64) return fail("histogram_bins must be in [4, 64]");
+    if (rounds < 1) return fail("rounds must be >= 1");
+    if (expansion_cycles < 1) return fail("expansion_cycles must be >= 1");
+    if (!(stroke_distance_weight >= 0)) return fail("stroke_distance_weight must be >= 0");
+    if (!(layout_weight >= 0)) return fail("layout_weight must be >= 0");
+    if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
+    if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
+    return true;
+}
+
+std::string SegmentationSummary::brief_report() const {
+    static const char* names[] = {"ok", "no_garment_found", "failed"};
+    std::ostringstream os;
+    os << "segmentation: " << names[static_cast<int>(termination)] << ", " << labels_used
+       << " classes, " << garments_found << " garment(s), " << std::fixed
+       << std::setprecision(2) << seconds << " s (graph cut " << seconds_graph_cut
+       << " s, refinement " << seconds_refinement << " s)";
+    if (!message.empty()) os << " (" << message << ")";
+    return os.str();
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// One multi-label problem at the working resolution.
+struct Problem {
+    int labels = 0;
+    cv::Mat hard;                       ///< CV_8UC1 label index or 255
+    std::vector<cv::Mat> prior;         ///< CV_32F per label (empty Mat = none)
+    std::vector<cv::Mat> model_seed;    ///< CV_8UC1 per label: first colour model pixels
+};
+
+/// Stage 1: rounds of (colour models, alpha-expansion). Returns label indices (CV_8UC1).
+cv::Mat solve(const cv::Mat& small, const Problem& p, const SegmentationOptions& o) {
+    const int n = small.rows * small.cols;
+    const size_t L = static_cast<size_t>(p.labels);
+    const cv::Mat bins = detail::colour_bins(small, o.histogram_bins);
+    detail::GridEnergy e;
+    e.width = small.cols;
+    e.height = small.rows;
+    e.labels = p.labels;
+    detail::set_contrast_weights(small, o.smoothness, e);
+    std::vector<std::uint8_t> lab(static_cast<size_t>(n), 0);
+    const auto* hard = p.hard.ptr<std::uint8_t>(0);
+    const auto* bin = bins.ptr<int>(0);
+    for (int round = 0; round < o.rounds; ++round) {
+        std::vector<detail::ColourHistogram> models(L, detail::ColourHistogram(o.histogram_bins));
+        for (int i = 0; i < n; ++i) {
+            if (round == 0) {
+                for (size_t l = 0; l < L; ++l)
+                    if (p.model_seed[l].data[i]) models[l].add(bin[i]);
+            } else {
+                models[lab[static_cast<size_t>(i)]].add(bin[i]);
+            }
+            if (hard[i] != 255) models[hard[i]].add(bin[i], 2.0);
+        }
+        for (auto& m : models) m.finish();
+        e.unary.assign(static_cast<size_t>(n) * L, 0.f);
+        for (int i = 0; i < n; ++i) {
+            float* u = &e.unary[static_cast<size_t>(i) * L];
+            for (size_t l = 0; l < L; ++l) {
+                u[l] = models[l].total() > 0 ? models[l].cost(bin[i]) : 1e4f;
+                if (!p.prior[l].empty()) u[l] += p.prior[l].ptr<float>(0)[i];
+                if (hard[i] != 255 && hard[i] != l) u[l] = 1e5f;
+            }
+            if (round == 0)
+                lab[static_cast<size_t>(i)] =
+                    static_cast<std::uint8_t>(std::min_element(u, u + L) - u);
+        }
+        detail::alpha_expansion(e, lab, o.expansion_cycles);
+    }
+    cv::Mat out(small.size(), CV_8UC1);
+    std::copy(lab.begin(), lab.end(), out.ptr<std::uint8_t>(0));
+    return out;
+}
+
+double working_scale(const cv::Mat& image, const SegmentationOptions& o) {
+    return std::min(1.0, double(o.working_max_side_px) / std::max(image.cols, image.rows));
+}
+
+cv::Mat shrink(const cv::Mat& image, double s) {
+    if (s >= 1.0) return image.clone();
+    cv::Mat out;
+    cv::resize(image, out, cv::Size(), s, s, cv::INTER_AREA);
+    return out;
+}
+
+/// Merges connected pieces smaller than `min_area` into their most common neighbour.
+void remove_small_pieces(cv::Mat& labels, double min_area, const cv::Mat& fixed) {
+    if (min_area <= 0) return;
+    bool present[256] = {};
+    for (auto it = labels.begin<std::uint8_t>(); it != labels.end<std::uint8_t>(); ++it)
+        present[*it] = true;
+    const cv::Mat k3 = cv::getStructuringElement(cv::MORPH_RECT, {3, 3});
+    for (int id = 0; id < 256; ++id) {
+        if (!present[id]) continue;
+        cv::Mat comp, stats, cent;
+        const int n = cv::connectedComponentsWithStats(labels == id, comp, stats, cent, 8, CV_32S);
+        for (int c = 1; c < n; ++c) {
+            if (stats.at<int>(c, cv::CC_STAT_AREA) >= min_area) continue;
+            cv::Rect box(stats.at<int>(c, cv::CC_STAT_LEFT) - 1, stats.at<int>(c, cv::CC_STAT_TOP) - 1,
+                         stats.at<int>(c, cv::CC_STAT_WIDTH) + 2,
+                         stats.at<int>(c, cv::CC_STAT_HEIGHT) + 2);
+            box &= cv::Rect(0, 0, labels.cols, labels.rows);
+            const cv::Mat piece = comp(box) == c;
+            if (!fixed.empty() && cv::countNonZero((fixed(box) != 255) & piece) > 0) continue;
+            cv::Mat ring;
+            cv::dilate(piece, ring, k3);
+            ring &= ~piece;
+            int votes[256] = {};
+            const cv::Mat lb = labels(box);
+            for (int y = 0; y < ring.rows; ++y)
+                for (int x = 0; x < ring.cols; ++x)
+                    if (ring.at<std::uint8_t>(y, x)) ++votes[lb.at<std::uint8_t>(y, x)];
+            const int best = int(std::max_element(votes, votes + 256) - votes);
+            if (votes[best] == 0 || best == id) continue;
+            labels(box).setTo(best, piece);
+        }
+    }
+}
+
+/// Stage 2 and cleanup, at full resolution. `small_ids` holds class ids.
+cv::Mat refine(const cv::Mat& image, const cv::Mat& small_ids, const cv::Mat& fixed,
+               double body_height_px, const SegmentationOptions& o, double& seconds) {
+    const auto t0 = Clock::now();
+    cv::Mat labels;
+    cv::resize(small_ids, labels, image.size(), 0, 0, cv::INTER_NEAREST);
+    if (o.refine_boundaries) {
+        const int size = std::max(3, int(std::lround(o.superpixel_fraction * body_height_px)));
+        cv::Mat index;
+        const int count = detail::slic_superpixels(image, size, 10.0, 4, index);
+        detail::majority_vote(index, count, fixed, labels);
+    } else if (!fixed.empty()) {
+        fixed.copyTo(labels, fixed != 255);
+    }
+    remove_small_pieces(labels, o.min_piece_fraction * double(labels.total()), fixed);
+    seconds = since(t0);
+    return labels;
+}
+
+int count_classes(const cv::Mat& labels) {
+    bool present[256] = {};
+    for (auto it = labels.begin<std::uint8_t>(); it != labels.end<std::uint8_t>(); ++it)
+        present[*it] = true;
+    return int(std::count(present, present + 256, true));
+}
+
+bool is_garment(LabelRole r) {
+    return r == LabelRole::upper_garment || r == LabelRole::lower_garment ||
+           r == LabelRole::full_garment;
+}
+
+int count_garments(const cv::Mat& labels, const LabelTable& t, double min_area) {
+    int counts[256] = {};
+    for (auto it = labels.begin<std::uint8_t>(); it != labels.end<std::uint8_t>(); ++it)
+        ++counts[*it];
+    int g = 0;
+    for (int id = 0; id < 255; ++id)
+        if (counts[id] >= min_area && is_garment(t.role(id))) ++g;
+    return g;
+}
+
+void finish(Segmentation& result, const SegmentationOptions& o, SegmentationSummary& s) {
+    result.occlusion = occlusion_mask(result.labels, o.table);
+    s.labels_used = count_classes(result.labels);
+    s.garments_found = count_garments(result.labels, o.table, 0.002 * result.labels.total());
+    if (s.garments_found == 0) {
+        s.termination = SegmentationTermination::no_garment_found;
+        s.message = "no garment region covers 0.2 % of the image";
+    } else {
+        s.termination = SegmentationTermination::ok;
+    }
+}
+
+}  // namespace
+
+cv::Mat occlusion_mask(const cv::Mat& labels, const LabelTable& table) {
+    require(!labels.empty() && labels.type() == CV_8UC1,
+            "occlusion_mask: labels must be a non-empty 8-bit single-channel class map");
+    cv::Mat out = cv::Mat::zeros(labels.size(), CV_8UC1);
+    cv::Mat garments = cv::Mat::zeros(labels.size(), CV_8UC1);
+    cv::Mat front = cv::Mat::zeros(labels.size(), CV_8UC1);
+    for (int y = 0; y < labels.rows; ++y)
+        for (int x = 0; x < labels.cols; ++x) {
+            const LabelRole r = table.role(labels.at<std::uint8_t>(y, x));
+            if (is_garment(r)) garments.at<std::uint8_t>(y, x) = 255;
+            if (r == LabelRole::skin || r == LabelRole::hair || r == LabelRole::occluder)
+                front.at<std::uint8_t>(y, x) = 255;
+        }
+    // Non-garment pixels enclosed by a garment's outline (holes).
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(garments.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+    cv::Mat filled = cv::Mat::zeros(labels.size(), CV_8UC1);
+    cv::drawContours(filled, contours, -1, cv::Scalar(255), cv::FILLED);
+    out |= filled & ~garments;
+    // Skin, hair and occluders touching a garment (within 2 px).
+    cv::Mat near;
+    cv::dilate(garments, near, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+    out |= near & front & ~garments;
+    return out;
+}
+
+SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& strokes,
+                                         const Joints* joints, const SegmentationOptions& o,
+                                         Segmentation& result) {
+    const auto t0 = Clock::now();
+    std::string why;
+    require(o.is_valid(&why), "SegmentationOptions: ", why);
+    check_image(image, CV_8UC3, "photo");
+    require(!strokes.empty() && strokes.type() == CV_8UC1,
+            "strokes must be an 8-bit single-channel map of class ids (255 = unmarked)");
+    require(strokes.size() == image.size(), "strokes are ", strokes.cols, " x ", strokes.rows,
+            " px but the photo is ", image.cols, " x ", image.rows, " px");
+    if (joints) joints->validate(image.cols, image.rows);
+    // Classes marked.
+    int counts[256] = {};
+    for (auto it = strokes.begin<std::uint8_t>(); it != strokes.end<std::uint8_t>(); ++it)
+        ++counts[*it];
+    std::vector<int> ids;
+    for (int id = 0; id < kUnmarked; ++id) {
+        if (!counts[id]) continue;
+        require(o.table.contains(id), "strokes use class id ", id,
+                " which is not in the label table (labels.txt ids 0..58)");
+        ids.push_back(id);
+    }
+    require(!ids.empty(), "strokes mark no pixel (every pixel is 255 = unmarked)");
+    require(counts[o.table.background_id()] > 0,
+            "strokes must mark some background (class ", o.table.background_id(), ")");
+    require(ids.size() <= 64, "strokes use ", ids.size(), " classes (at most 64)");
+
+    const double s = working_scale(image, o);
+    const cv::Mat small = shrink(image, s);
+    Problem p;
+    p.labels = int(ids.size());
+    int index_of[256];
+    std::fill(index_of, index_of + 256, 255);
+    for (size_t k = 0; k < ids.size(); ++k) index_of[ids[k]] = int(k);
+    cv::Mat small_strokes;
+    cv::resize(strokes, small_strokes, small.size(), 0, 0, cv::INTER_NEAREST);
+    p.hard = cv::Mat(small.size(), CV_8UC1);
+    for (size_t i = 0; i < small_strokes.total(); ++i)
+        p.hard.data[i] = static_cast<std::uint8_t>(index_of[small_strokes.data[i]]);
+    const double body_h = joints ? joints->body_height_px() : 0.9 * image.rows;
+    for (size_t k = 0; k < ids.size(); ++k) {
+        cv::Mat seed = small_strokes == ids[k];
+        if (cv::countNonZero(seed) == 0) {
+            // The stroke vanished when shrinking: keep it from the full-size map.
+            cv::Mat full = strokes == ids[k], sm;
+            cv::resize(full, sm, small.size(), 0, 0, cv::INTER_AREA);
+            seed = sm > 0;
+        }
+        p.model_seed.push_back(seed);
+        cv::Mat d;
+        cv::distanceTransform(seed == 0, d, cv::DIST_L2, 3, CV_32F);
+        p.prior.push_back(d * (o.stroke_distance_weight / (body_h * s)));
+    }
+    cv::Mat small_idx = solve(small, p, o);
+    cv::Mat small_ids(small_idx.size(), CV_8UC1);
+    for (size_t i = 0; i < small_idx.total(); ++i)
+        small_ids.data[i] = static_cast<std::uint8_t>(ids[small_idx.data[i]]);
+    SegmentationSummary summary;
+    summary.seconds_graph_cut = since(t0);
+    result = Segmentation{};
+    result.labels = refine(image, small_ids, strokes, body_h, o, summary.seconds_refinement);
+    finish(result, o, summary);
+    summary.seconds = since(t0);
+    return summary;
+}
+
+SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints,
+                                      const SegmentationOptions& o, Segmentation& result) {
+    using namespace detail;
+    const auto t0 = Clock::now();
+    std::string why;
+    require(o.is_valid(&why), "SegmentationOptions: ", why);
+    check_image(image, CV_8UC3, "photo");
+    joints.validate(image.cols, image.rows);
+    const double s = working_scale(image, o);
+    const cv::Mat small = shrink(image, s);
+    const BodyLayout layout = body_layout(small.size(), joints.scaled(s), o.layout_weight);
+    Problem p;
+    p.labels = kAutoLabels;
+    p.hard = layout.hard;
+    p.prior.assign(layout.prior.begin(), layout.prior.end());
+    p.model_seed.assign(layout.seed.begin(), layout.seed.end());
+    const cv::Mat idx = solve(small, p, o);
+
+    // Dress or two pieces: one colour model for the upper and lower regions?
+    const cv::Mat bins = colour_bins(small, o.histogram_bins);
+    ColourHistogram hu(o.histogram_bins), hl(o.histogram_bins);
+    for (size_t i = 0; i < idx.total(); ++i) {
+        if (idx.data[i] == kUpper) hu.add(bins.ptr<int>(0)[i]);
+        if (idx.data[i] == kLower) hl.add(bins.ptr<int>(0)[i]);
+    }
+    hu.finish();
+    hl.finish();
+    const double similarity = (hu.total() > 0 && hl.total() > 0) ? hu.similarity(hl) : 0.0;
+    bool dress = similarity > 0.75;
+    if (o.hint) dress = part_of(*o.hint) == GarmentPart::full;
+
+    const int skin = o.table.skin_id() >= 0 ? o.table.skin_id() : 41;
+    const int hair = o.table.hair_id() >= 0 ? o.table.hair_id() : 19;
+    const int kUpperTmp = 250, kLowerTmp = 251;
+    const std::array<int, kAutoLabels> to_id = {o.table.background_id(), skin, hair, kUpperTmp,
+                                                kLowerTmp};
+    cv::Mat small_ids(idx.size(), CV_8UC1);
+    for (size_t i = 0; i < idx.total(); ++i)
+        small_ids.data[i] = static_cast<std::uint8_t>(to_id[idx.data[i]]);
+    SegmentationSummary summary;
+    summary.seconds_graph_cut = since(t0);
+    result = Segmentation{};
+    result.labels = refine(image, small_ids, cv::Mat(), joints.body_height_px(), o,
+                           summary.seconds_refinement);
+
+    // Classify and write the garments' class ids.
+    const double min_area = 0.002 * double(result.labels.total());
+    auto assign = [&](const cv::Mat& mask, GarmentType t) {
+        result.labels.setTo(label_id_of(t), mask);
+        result.garment_types.emplace_back(label_id_of(t), t);
+    };
+    const cv::Mat mu = result.labels == kUpperTmp, ml = result.labels == kLowerTmp;
+    if (dress) {
+        const cv::Mat both = mu | ml;
+        if (cv::countNonZero(both) >= min_area) assign(both, GarmentType::dress);
+        else result.labels.setTo(o.table.background_id(), both);
+    } else {
+        for (const auto& [mask, part] : {std::pair{mu, GarmentPart::upper},
+                                         std::pair{ml, GarmentPart::lower}}) {
+            if (cv::countNonZero(mask) < min_area) {
+                result.labels.setTo(o.table.background_id(), mask);
+                continue;
+            }
+            const GarmentShapeCues cues = measure_shape_cues(mask, joints);
+            GarmentType t = part == GarmentPart::upper ? classify_upper(cues) : classify_lower(cues);
+            if (o.hint && part_of(*o.hint) == part) t = *o.hint;
+            assign(mask, t);
+        }
+    }
+    finish(result, o, summary);
+    std::ostringstream msg;
+    msg << "upper/lower colour similarity " << std::fixed << std::setprecision(2) << similarity
+        << (dress ? " -> dress" : " -> two pieces");
+    if (!summary.message.empty()) msg << "; " << summary.message;
+    summary.message = msg.str();
+    summary.seconds = since(t0);
+    return summary;
+}
+
+}  // namespace drape::vision
+
+namespace drape::vision {
+
+cv::Mat draw_segmentation(const cv::Mat& image, const cv::Mat& labels) {
+    check_image(image, CV_8UC3, "photo");
+    require(labels.type() == CV_8UC1 && labels.size() == image.size(),
+            "draw_segmentation: labels must be CV_8UC1 of the photo's size");
+    cv::Mat out = image.clone();
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = 0; x < image.cols; ++x) {
+            const int id = labels.at<std::uint8_t>(y, x);
+            if (id == 0) continue;
+            // A fixed, well-spread colour per id (golden-ratio hue steps).
+            const double h = std::fmod(id * 0.618034, 1.0) * 6.0;
+            const double f = h - std::floor(h);
+            const double rgb[6][3] = {{1, f, 0}, {1 - f, 1, 0}, {0, 1, f},
+                                      {0, 1 - f, 1}, {f, 0, 1}, {1, 0, 1 - f}};
+            const auto& c = rgb[int(h) % 6];
+            cv::Vec3b& p = out.at<cv::Vec3b>(y, x);
+            for (int k = 0; k < 3; ++k)
+                p[k] = cv::saturate_cast<std::uint8_t>(0.5 * p[k] + 0.5 * 255 * c[2 - k]);
+        }
+    cv::Mat edges;
+    cv::Mat dx, dy;
+    cv::Mat l16;
+    labels.convertTo(l16, CV_16S);
+    cv::Sobel(l16, dx, CV_16S, 1, 0, 1);
+    cv::Sobel(l16, dy, CV_16S, 0, 1, 1);
+    edges = (dx != 0) | (dy != 0);
+    out.setTo(cv::Scalar(255, 255, 255), edges);
+    return out;
+}
+
+}  // namespace drape::vision

@@ -1,0 +1,162 @@
+#include <drape/body/body_model.hpp>
+#include <drape/body/measurements.hpp>
+#include <drape/core/errors.hpp>
+#include <drape/garment/circle_skirt.hpp>
+#include <drape/garment/dress.hpp>
+#include <drape/garment/pants.hpp>
+#include <drape/garment/sizing_proposal.hpp>
+#include <drape/garment/tshirt.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace drape::garment;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// The error message of `f`, or "" if it does not throw InvalidInput.
+template <class F>
+std::string error_of(F f) {
+    try {
+        f();
+    } catch (const drape::InvalidInput& e) {
+        return e.what();
+    }
+    return "";
+}
+
+double max_mismatch(const Pattern& p) {
+    double m = 0;
+    for (const Seam& s : p.seams) m = std::max(m, p.seam_mismatch(s));
+    return m;
+}
+}  // namespace
+
+TEST_CASE("circle skirt: geometry follows <l1, r1, r2, alpha>", "[garment][templates]") {
+    SkirtSizing g;
+    g.l1 = 40;
+    g.r1 = 40 / (kPi / 2);  // quarter circle waist per panel
+    g.r2 = 60;
+    g.alpha = 90;           // = waist sweep: an exact annular sector
+    const Pattern p = make_circle_skirt(g);
+    REQUIRE(p.panels.size() == 2);
+    CHECK(p.panels[0].edges[2].length() == Approx(40.0).epsilon(1e-12));  // waist arc = l1
+    CHECK(p.panels[0].edges[1].length() == Approx(60.0).epsilon(1e-12));  // side = r2
+    const double sector = 0.5 * (kPi / 2) * (std::pow(g.r1 + g.r2, 2) - g.r1 * g.r1);
+    CHECK(p.panels[0].area() == Approx(sector).epsilon(1e-10));
+    CHECK(max_mismatch(p) < 1e-12);
+    // alpha = 0: parallel sides, straight hem.
+    g.alpha = 0;
+    const Pattern straight = make_circle_skirt(g);
+    CHECK(straight.panels[0].edges[0].kind == EdgeKind::line);
+}
+
+TEST_CASE("circle skirt: bad parameters name the parameter and value", "[garment][templates]") {
+    SkirtSizing g;
+    g.alpha = 200;
+    CHECK(error_of([&] { make_circle_skirt(g); }).find("parameter alpha = 200 deg") != std::string::npos);
+    g = SkirtSizing{};
+    g.r1 = 10;  // l1 / r1 = 3.8 rad > pi
+    CHECK(error_of([&] { make_circle_skirt(g); }).find("at most 180") != std::string::npos);
+    g = SkirtSizing{};
+    g.l1 = 60;
+    g.r1 = 60 / kPi;  // half-circle waist
+    g.alpha = 0;      // parallel sides: the hem cuts through the waist curve
+    g.r2 = 16;
+    CHECK(error_of([&] { make_circle_skirt(g); }).find("self-intersects") != std::string::npos);
+    g.l1 = std::nan("");
+    CHECK(error_of([&] { make_circle_skirt(g); }).find("parameter l1 = nan") != std::string::npos);
+}
+
+TEST_CASE("pants: seams match and lengths follow <w1..w4, h1..h3>", "[garment][templates]") {
+    const PantsSizing g;
+    const Pattern p = make_pants(g);
+    REQUIRE(p.panels.size() == 4);
+    CHECK(p.seams.size() == 14);  // 2 x (3 side + 2 inseam) + 2 x 2 crotch
+    CHECK(max_mismatch(p) < 1e-6);
+    // Hem width of a front and back panel = half the ankle girth each.
+    CHECK(p.panels[0].edges[0].length() + p.panels[3].edges[0].length() == Approx(g.w4));
+    // The waist edges' horizontal widths sum to the waist girth (the back waist is sloped).
+    double waist = 0;
+    for (int i = 0; i < 4; ++i)
+        for (const Edge& e : p.panels[i].edges)
+            if (e.kind == EdgeKind::line && std::min(e.start.y(), e.end.y()) > g.h1 - 1)
+                waist += std::abs(e.end.x() - e.start.x());
+    CHECK(waist == Approx(g.w1).epsilon(1e-12));
+    // Shorts: no knee line.
+    PantsSizing s = g;
+    s.h1 = 50;
+    const Pattern shorts = make_pants(s);
+    CHECK(shorts.panels[0].edges.size() == p.panels[0].edges.size() - 2);
+    CHECK(shorts.seams.size() == 10);
+    CHECK(max_mismatch(shorts) < 1e-6);
+    s.h3 = 48;  // inseam 2 cm
+    CHECK(error_of([&] { make_pants(s); }).find("inseam h1 - h3 = 2") != std::string::npos);
+    PantsSizing bad = g;
+    bad.w2 = 20;
+    CHECK(error_of([&] { make_pants(bad); }).find("parameter w2 = 20 cm") != std::string::npos);
+}
+
+TEST_CASE("t-shirt: sleeves, tank top and consistency checks", "[garment][templates]") {
+    TShirtSizing g;
+    const Pattern tee = make_tshirt(g);
+    CHECK(tee.panels.size() == 4);
+    CHECK(tee.seams.size() == 10);
+    CHECK(max_mismatch(tee) < 1e-12);
+    // Sleeve cap = armhole depth on front plus back.
+    const double armhole = g.h2 - kTShirtShoulderDrop - g.h1;
+    CHECK(tee.panels[2].edges[2].length() == Approx(armhole));
+    g.l1 = 0;
+    const Pattern tank = make_tshirt(g);
+    CHECK(tank.name == "tank_top");
+    CHECK(tank.panels.size() == 2);
+    CHECK(tank.seams.size() == 4);
+    g.l1 = 3;
+    CHECK(error_of([&] { make_tshirt(g); }).find("l1 = 3") != std::string::npos);
+    g = TShirtSizing{};
+    g.h1 = 64;  // armhole depth 2.5 cm
+    CHECK(error_of([&] { make_tshirt(g); }).find("armhole depth") != std::string::npos);
+    g = TShirtSizing{};
+    g.r = 25;
+    CHECK(error_of([&] { make_tshirt(g); }).find("parameter r = 25 cm") != std::string::npos);
+}
+
+TEST_CASE("dress: bodice and skirt joined at the waist", "[garment][templates]") {
+    DressSizing g;
+    const Pattern d = make_dress(g);
+    CHECK(d.panels.size() == 6);
+    CHECK(d.panel_index("skirt_front") == 4);
+    CHECK(d.seams.size() == 10 + 2 + 2);
+    CHECK(max_mismatch(d) < 0.01);
+    g.skirt.l1 = 40;
+    CHECK(error_of([&] { make_dress(g); }).find("waist seam") != std::string::npos);
+    g = DressSizing{};
+    g.skirt.alpha = -5;
+    CHECK(error_of([&] { make_dress(g); }).find("parameter skirt.alpha = -5") != std::string::npos);
+}
+
+TEST_CASE("sizing proposals from the default body are valid patterns", "[garment][templates]") {
+    const auto& model = drape::body::BodyModel::default_model();
+    const auto m = drape::body::measure_body(model, model.template_vertices);
+    const SkirtSizing skirt = propose_skirt_sizing(m);
+    CHECK(skirt.l1 == Approx((100 * m.waist_girth_m + 4) / 2));
+    CHECK_NOTHROW(make_circle_skirt(skirt));
+    const PantsSizing pants = propose_pants_sizing(m);
+    CHECK(pants.w2 == Approx(100 * m.hip_girth_m + 8));
+    CHECK(pants.h1 - pants.h3 == Approx(100 * m.crotch_height_m - 5).margin(1e-9));
+    CHECK_NOTHROW(make_pants(pants));
+    const TShirtSizing tee = propose_tshirt_sizing(m);
+    CHECK(2 * tee.w2 == Approx(100 * m.chest_girth_m + 10));
+    CHECK_NOTHROW(make_tshirt(tee));
+    const DressSizing dress = propose_dress_sizing(m);
+    CHECK_NOTHROW(make_dress(dress));
+    drape::body::BodyMeasurements broken = m;
+    broken.waist_girth_m = -1;
+    CHECK(error_of([&] { propose_skirt_sizing(broken); }).find("waist_girth_m = -1") != std::string::npos);
+    Ease ease;
+    ease.hip_cm = 100;
+    CHECK(error_of([&] { propose_pants_sizing(m, ease); }).find("hip_cm") != std::string::npos);
+}

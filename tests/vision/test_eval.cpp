@@ -1,0 +1,106 @@
+// Real photos (../shared/data/photos): a few in the default suite; the full 30-photo
+// evaluation is `drape eval-segment` (docs/vision.md).
+#include <drape/vision/garment_result.hpp>
+#include <drape/vision/image_io.hpp>
+#include <drape/vision/segmentation.hpp>
+#include <drape/vision/strokes.hpp>
+
+#include <drape/core/errors.hpp>
+
+#include "synthetic_figure.hpp"
+#include "test_paths.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <fstream>
+
+using namespace drape;
+using namespace drape::vision;
+
+namespace {
+
+struct Photo {
+    cv::Mat image, labels;
+    Joints joints;
+};
+
+/// Loads NAME from the shared photos; joints converted from 1-based to the image frame.
+bool load_photo(const std::string& name, Photo& p) {
+    const auto dir = test::shared_path("data/photos");
+    if (dir.empty()) return false;
+    p.image = load_image(dir / "images" / (name + ".jpg"));
+    p.labels = load_label_map(dir / "labels" / (name + ".png"), "labels");
+    std::ifstream f(dir / "joints" / (name + ".json"));
+    const nlohmann::json j = nlohmann::json::parse(f);
+    for (size_t i = 0; i < 14; ++i)
+        p.joints.px[i] = {j["joints"][i][0].get<double>() - 0.5, j["joints"][i][1].get<double>() - 0.5};
+    return true;
+}
+
+cv::Mat role_mask(const cv::Mat& labels, LabelRole role) {
+    cv::Mat m = cv::Mat::zeros(labels.size(), CV_8UC1);
+    for (size_t i = 0; i < labels.total(); ++i)
+        if (LabelTable::fashionista().role(labels.data[i]) == role) m.data[i] = 255;
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("stroke-guided and automatic parsing of real photos", "[vision][photos]") {
+    // A skirt + t-shirt photo and a jeans + shirt photo.
+    for (const std::string name : {"fashionista_002149", "fashionista_008973"}) {
+        Photo p;
+        if (!load_photo(name, p)) {
+            WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
+            return;
+        }
+        INFO(name);
+        Segmentation seg;
+        const SegmentationSummary s =
+            segment_with_strokes(p.image, simulate_strokes(p.labels), &p.joints, {}, seg);
+        INFO(s.brief_report());
+        REQUIRE(s.usable());
+        for (LabelRole r : {LabelRole::upper_garment, LabelRole::lower_garment}) {
+            const double v = test::iou(role_mask(seg.labels, r), role_mask(p.labels, r));
+            INFO("strokes, role " << int(r) << " IoU " << v);
+            CHECK(v > 0.85);
+        }
+        Segmentation autoseg;
+        const SegmentationSummary a = segment_automatic(p.image, p.joints, {}, autoseg);
+        INFO(a.brief_report());
+        REQUIRE(a.usable());
+        for (LabelRole r : {LabelRole::upper_garment, LabelRole::lower_garment}) {
+            const double v = test::iou(role_mask(autoseg.labels, r), role_mask(p.labels, r));
+            INFO("auto, role " << int(r) << " IoU " << v);
+            CHECK(v > 0.6);
+        }
+    }
+}
+
+TEST_CASE("wrinkle density of a real garment is stable under resizing", "[vision][photos][wrinkles]") {
+    Photo p;
+    if (!load_photo("fashionista_002149", p)) {
+        WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
+        return;
+    }
+    auto density = [&](double s) {
+        cv::Mat img, lab;
+        cv::resize(p.image, img, cv::Size(), s, s, s < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+        cv::resize(p.labels, lab, img.size(), 0, 0, cv::INTER_NEAREST);
+        Segmentation seg;
+        seg.labels = lab;
+        seg.occlusion = occlusion_mask(lab, LabelTable::fashionista());
+        const cv::Mat mask = lab == 42;  // the skirt
+        return detect_wrinkles(img, mask, seg.occlusion, p.joints.scaled(s), {}, nullptr);
+    };
+    const WrinkleSummary d1 = density(1.0);
+    INFO(d1.brief_report());
+    REQUIRE(d1.folds >= 3);
+    for (double s : {0.5, 2.0}) {
+        const WrinkleSummary ds = density(s);
+        INFO("scale " << s << ": " << ds.brief_report());
+        CHECK(ds.density_per_m2 / d1.density_per_m2 == Approx(1.0).margin(0.2));
+    }
+}

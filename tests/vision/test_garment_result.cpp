@@ -1,0 +1,80 @@
+#include <drape/vision/garment_result.hpp>
+
+#include "synthetic_figure.hpp"
+
+#include <catch2/catch.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+
+using namespace drape;
+using namespace drape::vision;
+
+TEST_CASE("garment results carry polygons with holes, features and occlusion", "[vision][garments]") {
+    test::SyntheticFigure f = test::make_figure();
+    // A bag (class 2) in front of the skirt: a hole in its silhouette.
+    cv::rectangle(f.labels, cv::Rect(190, 360, 20, 20), cv::Scalar(2), cv::FILLED);
+    Segmentation seg;
+    seg.labels = f.labels;
+    seg.occlusion = occlusion_mask(f.labels, LabelTable::fashionista());
+    const auto garments = describe_garments(f.photo, seg, f.joints, LabelTable::fashionista(), {});
+    REQUIRE(garments.size() == 2);
+    const GarmentResult* skirt = nullptr;
+    const GarmentResult* shirt = nullptr;
+    for (const auto& g : garments) (g.label_id == 42 ? skirt : shirt) = &g;
+    REQUIRE(skirt);
+    REQUIRE(shirt);
+    CHECK(skirt->type == GarmentType::skirt);
+    CHECK(shirt->type == GarmentType::t_shirt);
+    REQUIRE(skirt->silhouette.size() == 1);
+    REQUIRE(skirt->silhouette[0].holes.size() == 1);
+    CHECK(skirt->occlusion_fraction == Approx(400.0 / (skirt->area_px + 400)).epsilon(0.05));
+    // The skirt trapezoid (y 290..420, 64 -> 124 px wide) shows below the t-shirt's hem
+    // (y 300): 121 rows.
+    const GarmentFeatures& sf = skirt->features;
+    CHECK(sf.length_px == Approx(121).margin(3));
+    CHECK(sf.hem_width_px == Approx(121).margin(6));
+    CHECK(sf.top_width_px == Approx(67).margin(6));
+    CHECK(std::isnan(sf.inseam_px));
+    CHECK(std::isnan(sf.sleeve_length_px));
+    for (const auto& [name, v] : sf.list()) CHECK(v.second == Approx(v.first / f.joints.body_height_px()));
+    // The t-shirt's sleeve covers about 37 % of the arm from the shoulder.
+    CHECK(shirt->cues.sleeve_fraction > 0.2);
+    CHECK(shirt->cues.sleeve_fraction < 0.5);
+    CHECK(shirt->features.sleeve_length_px > 40);
+    CHECK(shirt->features.neckline_depth_px >= 0);
+    CHECK(shirt->features.neckline_depth_px < 20);
+}
+
+TEST_CASE("garment cues separate skirts, shorts, pants and sleeve lengths", "[vision][garments][classify]") {
+    const test::SyntheticFigure skirt = test::make_figure(test::Bottom::skirt);
+    const test::SyntheticFigure pants = test::make_figure(test::Bottom::pants);
+    CHECK(classify_lower(measure_shape_cues(skirt.labels == 42, skirt.joints)) == GarmentType::skirt);
+    const GarmentShapeCues pc = measure_shape_cues(pants.labels == 31, pants.joints);
+    CHECK(pc.hem_fraction > 0.9);
+    CHECK(classify_lower(pc) == GarmentType::pants);
+    // Shorts: the pants cut above the knee.
+    cv::Mat shorts = (pants.labels == 31);
+    shorts.rowRange(380, shorts.rows).setTo(0);
+    const GarmentShapeCues sc = measure_shape_cues(shorts, pants.joints);
+    CHECK(sc.between_legs_fraction < 0.5);
+    CHECK(classify_lower(sc) == GarmentType::shorts);
+    const GarmentFeatures sf = measure_features(shorts, GarmentType::shorts, pants.joints);
+    CHECK(sf.inseam_px > 20);
+    CHECK(sf.inseam_px < 70);
+    // Sleeves: none (tank top), half (t-shirt), full (long sleeves).
+    cv::Mat top = skirt.labels == 51;
+    CHECK(classify_upper(measure_shape_cues(top, skirt.joints)) == GarmentType::t_shirt);
+    cv::Mat tank = top.clone();
+    cv::Mat arms = (skirt.labels == 51);
+    tank.setTo(0);
+    const cv::Point torso[4] = {{170, 130}, {230, 130}, {236, 300}, {164, 300}};
+    cv::fillConvexPoly(tank, torso, 4, cv::Scalar(255));
+    CHECK(classify_upper(measure_shape_cues(tank, skirt.joints)) == GarmentType::tank_top);
+    cv::Mat longs = top.clone();
+    using J = Joint;
+    const auto p = [&](J j) { return cv::Point(int(skirt.joints[j].x()), int(skirt.joints[j].y())); };
+    cv::line(longs, p(J::right_shoulder), p(J::right_elbow), 255, 26);
+    cv::line(longs, p(J::right_elbow), p(J::right_hand), 255, 24);
+    CHECK(classify_upper(measure_shape_cues(longs, skirt.joints)) == GarmentType::long_sleeve_top);
+}

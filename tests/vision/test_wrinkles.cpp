@@ -1,0 +1,90 @@
+#include <drape/vision/wrinkle_density.hpp>
+
+#include <drape/core/errors.hpp>
+
+#include "synthetic_figure.hpp"
+
+#include <catch2/catch.hpp>
+#include <opencv2/imgproc.hpp>
+
+using namespace drape;
+using namespace drape::vision;
+
+namespace {
+
+/// A plain grey garment panel (x 120..280, y 250..450) with `periods` vertical folds.
+struct Panel {
+    cv::Mat photo, mask;
+    Joints joints;
+};
+
+Panel make_panel(int periods, double scale) {
+    const test::SyntheticFigure f = test::make_figure(test::Bottom::skirt, 1.0);
+    Panel p;
+    p.photo = cv::Mat(600, 400, CV_8UC3, cv::Scalar(200, 205, 210));
+    p.mask = cv::Mat::zeros(600, 400, CV_8UC1);
+    cv::rectangle(p.mask, cv::Rect(120, 250, 160, 200), cv::Scalar(255), cv::FILLED);
+    p.photo.setTo(cv::Scalar(90, 110, 150), p.mask);
+    if (periods > 0) test::paint_folds(p.photo, p.mask, periods, 0.3);
+    cv::RNG rng(7);
+    cv::Mat noise(p.photo.size(), CV_8UC3);
+    rng.fill(noise, cv::RNG::NORMAL, 0, 3);
+    p.photo += noise;
+    p.joints = f.joints;
+    if (scale != 1.0) {
+        cv::resize(p.photo, p.photo, cv::Size(), scale, scale, scale < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+        cv::resize(p.mask, p.mask, p.photo.size(), 0, 0, cv::INTER_NEAREST);
+        p.joints = p.joints.scaled(scale);
+    }
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("the fold detector counts drawn folds", "[vision][wrinkles]") {
+    for (int periods : {6, 8}) {
+        const Panel p = make_panel(periods, 1.0);
+        std::vector<Fold> folds;
+        const WrinkleSummary s = detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, {}, &folds);
+        INFO(periods << " periods: " << s.brief_report());
+        REQUIRE(s.usable());
+        CHECK(std::abs(s.folds - periods) <= 1);
+        CHECK(int(folds.size()) == s.folds);
+        const double px_per_m = p.joints.body_height_px() / 1.70;
+        CHECK(s.garment_area_m2 == Approx(160.0 * 200.0 / (px_per_m * px_per_m)).epsilon(0.01));
+        CHECK(s.density_per_m2 == Approx(s.folds / s.garment_area_m2));
+        for (const auto& f : folds) {
+            CHECK(f.ridge.bright);
+            CHECK_FALSE(f.valley.bright);
+        }
+    }
+    // A flat panel has no folds.
+    const Panel flat = make_panel(0, 1.0);
+    CHECK(detect_wrinkles(flat.photo, flat.mask, cv::Mat(), flat.joints, {}, nullptr).folds == 0);
+}
+
+TEST_CASE("wrinkle density does not depend on the photo's resolution", "[vision][wrinkles]") {
+    const Panel p1 = make_panel(5, 1.0);
+    const double d1 = detect_wrinkles(p1.photo, p1.mask, cv::Mat(), p1.joints, {}, nullptr).density_per_m2;
+    REQUIRE(d1 > 0);
+    for (double s : {0.5, 2.0}) {
+        const Panel ps = make_panel(5, s);
+        const double ds = detect_wrinkles(ps.photo, ps.mask, cv::Mat(), ps.joints, {}, nullptr).density_per_m2;
+        INFO("scale " << s);
+        CHECK(ds / d1 == Approx(1.0).margin(0.2));
+    }
+}
+
+TEST_CASE("detect_wrinkles rejects mismatched inputs", "[vision][wrinkles][errors]") {
+    const Panel p = make_panel(3, 1.0);
+    CHECK_THROWS_AS(detect_wrinkles(p.photo, cv::Mat(10, 10, CV_8UC1), cv::Mat(), p.joints, {}, nullptr),
+                    InvalidInput);
+    WrinkleOptions bad;
+    bad.person_height_m = 0;
+    CHECK_THROWS_AS(detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, bad, nullptr), InvalidInput);
+    // A tiny garment is reported, not an error.
+    cv::Mat speck = cv::Mat::zeros(p.mask.size(), CV_8UC1);
+    speck(cv::Rect(200, 300, 3, 3)).setTo(255);
+    CHECK(detect_wrinkles(p.photo, speck, cv::Mat(), p.joints, {}, nullptr).termination ==
+          WrinkleTermination::garment_too_small);
+}
