@@ -32,6 +32,9 @@ void add_eval_segment_command(CLI::App& app);
 ///  [--edge CM] --out DIR` (pattern.svg/dxf/json, pattern_mesh.obj, summary.json)
 void add_pattern_command(CLI::App& app);
 
+/// `drape dress --garment G --sizing G.json|auto --material NAME|PATH [--body P.json] [--pose NAME] --out DIR`
+void add_dress_command(CLI::App& app);
+
 /// `drape bench-cloth [--n 32|64] [--seconds S] [--material NAME|PATH] [--threads N] [--out R.json]`
 void add_bench_cloth_command(CLI::App& app);
 

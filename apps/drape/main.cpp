@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     drape::app::add_strokes_command(app);
     drape::app::add_eval_segment_command(app);
     drape::app::add_pattern_command(app);
+    drape::app::add_dress_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,0 +1,310 @@
+// drape dress --garment skirt|pants|tshirt|dress --sizing G.json|auto --material NAME|PATH
+//             [--materials DIR] [--body P.json] [--pose NAME|POSE.json] [--edge CM]
+//             [--no-render] --out DIR
+#include "body_json.hpp"
+#include "commands.hpp"
+#include "garment_json.hpp"
+#include "image_io.hpp"
+#include "json_io.hpp"
+
+#include <drape/body/body_model.hpp>
+#include <drape/body/pose.hpp>
+#include <drape/body/shape_body.hpp>
+#include <drape/cloth/material.hpp>
+#include <drape/core/atomic_file.hpp>
+#include <drape/core/errors.hpp>
+#include <drape/garment/drape_garment.hpp>
+#include <drape/garment/dressing.hpp>
+#include <drape/garment/garment_mesh.hpp>
+#include <drape/garment/pattern_dxf.hpp>
+#include <drape/garment/pattern_json.hpp>
+#include <drape/garment/pattern_svg.hpp>
+#include <drape/garment/sizing_proposal.hpp>
+#include <drape/render/renderer.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace drape::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DressArgs {
+    std::string garment;
+    std::string sizing;
+    std::string material;
+    std::string materials_dir;
+    std::string body;
+    std::string pose = "a_pose";
+    std::string out;
+    double edge_cm = 1.5;
+    bool no_render = false;
+};
+
+/// NAME (a measured fabric in --materials DIR or $DRAPE_SHARED_DIR/materials) or a path.
+fs::path resolve_material(const DressArgs& args) {
+    const fs::path given(args.material);
+    std::error_code ec;
+    if (given.has_extension() || given.has_parent_path()) {
+        if (!fs::is_regular_file(given, ec)) throw IoError("--material: file '" + args.material + "' not found");
+        return given;
+    }
+    std::vector<fs::path> dirs;
+    if (!args.materials_dir.empty()) dirs.emplace_back(args.materials_dir);
+    if (const char* shared = std::getenv("DRAPE_SHARED_DIR")) dirs.push_back(fs::path(shared) / "materials");
+    if (dirs.empty())
+        throw InvalidInput("--material '" + args.material +
+                           "' is a name: give --materials DIR or set DRAPE_SHARED_DIR to find it");
+    std::string tried;
+    for (const fs::path& d : dirs) {
+        const fs::path p = d / (args.material + ".json");
+        if (fs::is_regular_file(p, ec)) return p;
+        tried += (tried.empty() ? "" : ", ") + p.string();
+    }
+    throw InvalidInput("--material '" + args.material + "': no such fabric (tried " + tried + ")");
+}
+
+body::Pose resolve_pose(const std::string& name) {
+    if (name == "a_pose") return body::named_pose(body::NamedPose::a_pose);
+    if (name == "arms_down") return body::named_pose(body::NamedPose::arms_down);
+    if (name == "walking") return body::named_pose(body::NamedPose::walking);
+    if (name == "t_pose") return body::named_pose(body::NamedPose::t_pose);
+    if (fs::path(name).extension() == ".json") return pose_from_json(read_json_file(name), name);
+    throw InvalidInput("--pose '" + name + "' is not a_pose, arms_down, walking, t_pose or a POSE.json file");
+}
+
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& m) {
+    GarmentSizing g;
+    g.type = type;
+    switch (type) {
+        case GarmentType::skirt: g.skirt = garment::propose_skirt_sizing(m); break;
+        case GarmentType::pants: g.pants = garment::propose_pants_sizing(m); break;
+        case GarmentType::tshirt: g.tshirt = garment::propose_tshirt_sizing(m); break;
+        case GarmentType::dress: g.dress = garment::propose_dress_sizing(m); break;
+    }
+    return g;
+}
+
+/// The draped garment as OBJ: v = world metres, vt = pattern uv, one group per panel.
+void write_garment_obj(const fs::path& path, const garment::Pattern& pattern, const garment::GarmentMesh& m,
+                       const Eigen::MatrixX3d& X) {
+    std::ostringstream os;
+    os << "# drape dress '" << pattern.name << "': draped garment, world metres; vt = pattern uv\n";
+    for (int v = 0; v < X.rows(); ++v) os << "v " << X(v, 0) << " " << X(v, 1) << " " << X(v, 2) << "\n";
+    for (int v = 0; v < X.rows(); ++v) os << "vt " << m.uv(v, 0) << " " << m.uv(v, 1) << "\n";
+    int panel = -1;
+    for (int f = 0; f < m.cloth.face_count(); ++f) {
+        const int p = m.panel_of_vertex(m.cloth.faces(f, 0));
+        if (p != panel) os << "g " << pattern.panels[size_t(panel = p)].name << "\n";
+        os << "f " << m.cloth.faces(f, 0) + 1 << "/" << m.cloth.faces(f, 0) + 1 << " " << m.cloth.faces(f, 1) + 1
+           << "/" << m.cloth.faces(f, 1) + 1 << " " << m.cloth.faces(f, 2) + 1 << "/" << m.cloth.faces(f, 2) + 1
+           << "\n";
+    }
+    write_text_atomically(path, os.str());
+}
+
+/// A glTF 2.0 binary with one mesh: float positions, uv (TEXCOORD_0) and uint32 indices.
+void write_garment_glb(const fs::path& path, const garment::GarmentMesh& m, const Eigen::MatrixX3d& X) {
+    const auto nv = size_t(X.rows()), nf = size_t(m.cloth.face_count());
+    std::vector<float> pos(3 * nv), uv(2 * nv);
+    std::vector<std::uint32_t> idx(3 * nf);
+    for (size_t v = 0; v < nv; ++v) {
+        for (int k = 0; k < 3; ++k) pos[3 * v + size_t(k)] = float(X(Eigen::Index(v), k));
+        uv[2 * v] = float(m.uv(Eigen::Index(v), 0));
+        uv[2 * v + 1] = float(1.0 - m.uv(Eigen::Index(v), 1));  // glTF's v runs downwards
+    }
+    for (size_t f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) idx[3 * f + size_t(k)] = std::uint32_t(m.cloth.faces(Eigen::Index(f), k));
+    const Eigen::Vector3d lo = X.colwise().minCoeff(), hi = X.colwise().maxCoeff();
+    const size_t pos_bytes = 4 * pos.size(), uv_bytes = 4 * uv.size(), idx_bytes = 4 * idx.size();
+    const nlohmann::json gltf = {
+        {"asset", {{"version", "2.0"}, {"generator", "drape dress"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}, {"name", "garment"}}}},
+        {"meshes", {{{"name", "garment"},
+                     {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
+        {"buffers", {{{"byteLength", pos_bytes + uv_bytes + idx_bytes}}}},
+        {"bufferViews",
+         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}, {"target", 34962}},
+          {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", uv_bytes}, {"target", 34962}},
+          {{"buffer", 0}, {"byteOffset", pos_bytes + uv_bytes}, {"byteLength", idx_bytes}, {"target", 34963}}}},
+        {"accessors",
+         {{{"bufferView", 0}, {"componentType", 5126}, {"count", nv}, {"type", "VEC3"},
+           {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}},
+          {{"bufferView", 1}, {"componentType", 5126}, {"count", nv}, {"type", "VEC2"}},
+          {{"bufferView", 2}, {"componentType", 5125}, {"count", 3 * nf}, {"type", "SCALAR"}}}}};
+    std::string json = gltf.dump();
+    while (json.size() % 4) json += ' ';
+    const size_t bin_bytes = pos_bytes + uv_bytes + idx_bytes;  // multiple of 4
+    std::string out;
+    auto put32 = [&](std::uint32_t x) { out.append(reinterpret_cast<const char*>(&x), 4); };
+    put32(0x46546C67u);  // "glTF" (little endian)
+    put32(2);
+    put32(std::uint32_t(12 + 8 + json.size() + 8 + bin_bytes));
+    put32(std::uint32_t(json.size()));
+    put32(0x4E4F534Au);  // "JSON"
+    out += json;
+    put32(std::uint32_t(bin_bytes));
+    put32(0x004E4942u);  // "BIN\0"
+    out.append(reinterpret_cast<const char*>(pos.data()), pos_bytes);
+    out.append(reinterpret_cast<const char*>(uv.data()), uv_bytes);
+    out.append(reinterpret_cast<const char*>(idx.data()), idx_bytes);
+    write_text_atomically(path, out);
+}
+
+/// Body and garment from the front-left, on a floor, studio light.
+void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,
+                  const garment::GarmentMesh& m, const Eigen::MatrixX3d& X) {
+    render::Scene scene;
+    render::Mesh b;
+    b.name = "body";
+    b.V = body_V;
+    b.F = body_F;
+    b.material.colour_srgb = {0.80, 0.74, 0.67};
+    b.material.roughness = 0.55;
+    scene.meshes.push_back(std::move(b));
+    render::Mesh g;
+    g.name = "garment";
+    g.V = X;
+    g.F = m.cloth.faces;
+    g.UV = m.uv;
+    g.material.colour_srgb = {0.20, 0.33, 0.62};
+    g.material.roughness = 0.85;
+    scene.meshes.push_back(std::move(g));
+    scene.floor.enabled = true;
+    scene.floor.height_m = std::min(body_V.col(1).minCoeff(), X.col(1).minCoeff());
+    const Eigen::Vector3d lo = body_V.colwise().minCoeff(), hi = body_V.colwise().maxCoeff();
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    const int width = 600, height = 900;
+    const double focal = 0.5 * height / std::tan(15.0 * 3.14159265358979323846 / 180.0);  // 30° vertical view
+    const double dist = 1.15 * (hi.y() - lo.y()) * focal / height;
+    const Eigen::Vector3d eye = centre + dist * Eigen::Vector3d(0.35, 0.05, 1.0).normalized();
+    const render::Camera camera = render::Camera::look_at(eye, centre, {0, 1, 0}, focal, width, height);
+    render::RenderImages images;
+    const render::RenderSummary s =
+        render::render(scene, camera, render::lighting_preset(render::LightingPreset::studio), {}, images);
+    std::cerr << "drape dress: " << s.brief_report() << "\n";
+    write_png(path, images.colour);
+}
+
+void run_dress(const DressArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
+    // Every input is read and checked before the slow work.
+    const GarmentType type = garment_type_from_name(args.garment);
+    require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    const body::Pose pose = resolve_pose(args.pose);
+    const fs::path material_file = resolve_material(args);
+    const cloth::Material material = cloth::load_material(material_file);
+    const body::SemanticRequest request =
+        args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
+    const GarmentSizing given =
+        args.sizing == "auto" ? GarmentSizing{} : sizing_from_json(type, read_json_file(args.sizing), args.sizing);
+
+    const body::BodyModel& model = body::BodyModel::default_model();
+    body::ShapedBody shaped;
+    const body::ShapeSummary shape =
+        body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
+    if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
+    const body::PosedBody posed = body::pose_body(model, shaped, pose);
+    const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, shape.measured) : given;
+    const garment::Pattern pattern = make_pattern(sizing);
+
+    const fs::path dir(args.out);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw IoError("cannot create output folder '" + args.out + "': " + ec.message());
+    garment::write_pattern_svg(dir / "pattern.svg", pattern);
+    garment::write_pattern_dxf(dir / "pattern.dxf", pattern);
+    garment::write_pattern_json(dir / "pattern.json", pattern);
+
+    garment::MeshOptions mesh_options;
+    mesh_options.target_edge_cm = args.edge_cm;
+    garment::GarmentMesh mesh;
+    const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, mesh);
+    if (!meshed.usable()) throw std::runtime_error("drape dress: meshing failed: " + meshed.brief_report());
+    std::cerr << "drape dress: " << meshed.brief_report() << "\n";
+    Eigen::MatrixX3d X0, X;
+    const garment::DressingSummary dressed =
+        garment::dress_garment(pattern, mesh, model, shaped, pose, garment::DressingOptions{}, X0);
+    std::cerr << "drape dress: " << dressed.brief_report() << "\n";
+
+    garment::DrapeOptions options;
+    options.on_progress = [](const garment::DrapeProgress& p) {
+        if (p.step % 50 == 0)
+            std::cerr << "drape dress: step " << p.step << ", seam gap " << 1000 * p.seam_gap_max_m
+                      << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
+        return true;
+    };
+    const garment::DrapeSummary draped =
+        garment::drape_garment(mesh, X0, posed.vertices, model.faces, material, options, X);
+    std::cout << "drape dress: " << pattern.name << ", " << draped.brief_report() << "\n";
+
+    write_garment_obj(dir / "garment.obj", pattern, mesh, X);
+    write_garment_glb(dir / "garment.glb", mesh, X);
+    if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh, X);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const nlohmann::json report = {{"garment", garment_type_name(type)},
+                                   {"sizing", to_json(sizing)},
+                                   {"material", material_file.string()},
+                                   {"pose", args.pose},
+                                   {"edge_cm", args.edge_cm},
+                                   {"vertices", draped.vertices},
+                                   {"faces", meshed.faces},
+                                   {"stitches", draped.stitches},
+                                   {"seam_gap_max_m", draped.seam_gap_max_m},
+                                   {"penetration_max_m", draped.penetration_max_m},
+                                   {"vertices_inside", draped.vertices_inside},
+                                   {"self_intersections", draped.self_intersections},
+                                   {"converged", draped.converged},
+                                   {"usable", draped.usable()},
+                                   {"steps", draped.steps},
+                                   {"steps_to_close_seams", draped.steps_to_close_seams},
+                                   {"dressing", dressed.brief_report()},
+                                   {"message", draped.message},
+                                   {"seconds_dress", dressed.seconds},
+                                   {"seconds_drape", draped.seconds},
+                                   {"seconds", seconds}};
+    write_json_file(dir / "summary.json", report);
+    if (!draped.usable()) throw std::runtime_error("drape dress: draping not usable: " + draped.brief_report());
+}
+
+}  // namespace
+
+void add_dress_command(CLI::App& app) {
+    auto args = std::make_shared<DressArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "dress", "Dress a body in a garment: pattern from sizing G, wrapped on the body, seams sewn and "
+                 "draped with the cloth simulator (garment.obj/glb, pattern.svg/dxf/json, render.png, "
+                 "summary.json)");
+    cmd->add_option("--garment", args->garment, "skirt, pants, tshirt or dress")->required();
+    cmd->add_option("--sizing", args->sizing,
+                    "G.json with the paper's parameter names (cm, degrees), or 'auto' to derive G from "
+                    "the body's measurements")
+        ->required();
+    cmd->add_option("--material", args->material,
+                    "a measured fabric name (e.g. gray-interlock, looked up as NAME.json in --materials or "
+                    "$DRAPE_SHARED_DIR/materials) or an ArcSim material JSON path")
+        ->required();
+    cmd->add_option("--materials", args->materials_dir, "folder of fabric JSON files");
+    cmd->add_option("--body", args->body,
+                    "body P.json (semantic measurements, as `drape body --params`); default: the mean female");
+    cmd->add_option("--pose", args->pose, "a_pose (default), arms_down, walking, t_pose, or a POSE.json");
+    cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 1.5)");
+    cmd->add_flag("--no-render", args->no_render, "skip render.png");
+    cmd->add_option("--out", args->out, "output folder")->required();
+    cmd->callback([args] { run_dress(*args); });
+}
+
+}  // namespace drape::app

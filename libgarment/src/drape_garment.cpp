@@ -1,0 +1,268 @@
+#include <drape/garment/drape_garment.hpp>
+
+#include <drape/cloth/obstacle.hpp>
+#include <drape/core/errors.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace drape::garment {
+
+namespace {
+
+const char* termination_name(DrapeTermination t) {
+    switch (t) {
+        case DrapeTermination::converged: return "converged";
+        case DrapeTermination::not_settled: return "not settled";
+        case DrapeTermination::static_failed: return "static solve failed";
+        case DrapeTermination::step_failed: return "step failed";
+        case DrapeTermination::cancelled: return "cancelled";
+    }
+    return "?";
+}
+
+double kinetic_energy(const cloth::Simulator& sim) {
+    return 0.5 * (sim.masses().array() * sim.velocities().rowwise().squaredNorm().array()).sum();
+}
+
+}  // namespace
+
+cloth::SimulatorOptions DrapeOptions::default_simulator_options() {
+    cloth::SimulatorOptions o;
+    o.gravity_m_per_s2 = Eigen::Vector3d(0.0, -9.8, 0.0);
+    o.time_step_s = 1e-2;
+    o.air_drag_n_s_per_m3 = 2.0;
+    o.max_newton_iterations = 12;
+    return o;
+}
+
+bool DrapeOptions::is_valid(std::string* why) const {
+    auto fail = [&](const std::string& t) {
+        if (why) *why = t;
+        return false;
+    };
+    std::string sim_why;
+    if (!simulator.is_valid(&sim_why)) return fail("DrapeOptions::simulator: " + sim_why);
+    if (!(seam_gap_tolerance_m > 0))
+        return fail("DrapeOptions::seam_gap_tolerance_m = " + std::to_string(seam_gap_tolerance_m) + " must be > 0");
+    if (!(settled_kinetic_energy_j_per_kg > 0))
+        return fail("DrapeOptions::settled_kinetic_energy_j_per_kg = " +
+                    std::to_string(settled_kinetic_energy_j_per_kg) + " must be > 0");
+    if (min_steps < 0) return fail("DrapeOptions::min_steps = " + std::to_string(min_steps) + " must be >= 0");
+    if (max_steps < 1 || max_steps < min_steps)
+        return fail("DrapeOptions::max_steps = " + std::to_string(max_steps) + " must be >= 1 and >= min_steps");
+    if (static_max_newton_iterations < 1)
+        return fail("DrapeOptions::static_max_newton_iterations = " + std::to_string(static_max_newton_iterations) +
+                    " must be >= 1");
+    if (max_untangle_steps < 0)
+        return fail("DrapeOptions::max_untangle_steps = " + std::to_string(max_untangle_steps) + " must be >= 0");
+    if (fallback_steps < 0)
+        return fail("DrapeOptions::fallback_steps = " + std::to_string(fallback_steps) + " must be >= 0");
+    if (!(penetration_tolerance_m > 0))
+        return fail("DrapeOptions::penetration_tolerance_m = " + std::to_string(penetration_tolerance_m) +
+                    " must be > 0");
+    return true;
+}
+
+std::string DrapeSummary::brief_report() const {
+    std::ostringstream os;
+    os << (usable() ? "draped" : "draping NOT usable") << " (" << termination_name(termination) << "): "
+       << "dressed state: gap " << 1000 * initial_seam_gap_max_m << " mm, penetration "
+       << 1000 * initial_penetration_max_m << " mm, " << initial_self_intersections << " self-intersections; "
+       << vertices << " vertices, " << stitches << " stitches, max seam gap " << 1000 * seam_gap_max_m
+       << " mm, max penetration " << 1000 * penetration_max_m << " mm (" << vertices_inside
+       << " vertices inside), " << self_intersections << " self-intersections, " << steps
+       << " steps (seams closed at step " << steps_to_close_seams << "), static |g| " << static_gradient_n
+       << " N in " << static_newton_iterations << " iterations, " << seconds << " s";
+    if (!message.empty()) os << " (" << message << ")";
+    return os.str();
+}
+
+std::vector<cloth::Stitch> garment_stitches(const GarmentMesh& mesh) {
+    const int nv = mesh.cloth.vertex_count();
+    require(mesh.stitch_seam.size() == mesh.stitches.size(), "garment_stitches: ", mesh.stitches.size(),
+            " stitches but ", mesh.stitch_seam.size(), " seam indices");
+    require(mesh.cloth.pattern.rows() == nv, "garment_stitches: the mesh has ", nv, " vertices but ",
+            mesh.cloth.pattern.rows(), " pattern points (per-vertex pattern expected)");
+    // Boundary neighbours of every vertex on its panel's loop.
+    std::vector<std::pair<int, int>> neighbours(size_t(nv), {-1, -1});
+    for (const std::vector<int>& loop : mesh.boundary_loops) {
+        const size_t n = loop.size();
+        for (size_t k = 0; k < n; ++k) {
+            require(loop[k] >= 0 && loop[k] < nv, "garment_stitches: boundary vertex ", loop[k], " out of range");
+            neighbours[size_t(loop[k])] = {loop[(k + n - 1) % n], loop[(k + 1) % n]};
+        }
+    }
+    std::set<std::pair<int, int>> on_seam;  // (vertex, seam) for side a of each stitch
+    for (size_t s = 0; s < mesh.stitches.size(); ++s) on_seam.insert({mesh.stitches[s][0], mesh.stitch_seam[s]});
+
+    auto pattern_length = [&](int i, int j) { return (mesh.cloth.pattern.row(i) - mesh.cloth.pattern.row(j)).norm(); };
+    std::vector<cloth::Stitch> out;
+    out.reserve(mesh.stitches.size());
+    for (size_t s = 0; s < mesh.stitches.size(); ++s) {
+        const auto [a, b] = mesh.stitches[s];
+        require(a >= 0 && a < nv && b >= 0 && b < nv && a != b, "garment_stitches: stitch ", s, " (", a, ", ",
+                b, ") is invalid");
+        const auto [prev, next] = neighbours[size_t(a)];
+        double length = 0, fallback = 0;
+        for (int other : {prev, next}) {
+            if (other < 0) continue;
+            const double half = 0.5 * pattern_length(a, other);
+            fallback += half;
+            // Only the boundary segments that belong to this seam count.
+            if (on_seam.count({other, mesh.stitch_seam[s]})) length += half;
+        }
+        if (!(length > 0)) length = fallback;
+        if (!(length > 0)) length = 0.5 * pattern_length(a, b) + 1e-3;
+        out.push_back({a, b, length});
+    }
+    return out;
+}
+
+DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+                           const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3i& body_faces,
+                           const cloth::Material& material, const DrapeOptions& options,
+                           Eigen::MatrixX3d& out_positions) {
+    const auto start = std::chrono::steady_clock::now();
+    std::string why;
+    require(options.is_valid(&why), "drape_garment: ", why);
+    require(material.is_valid(&why), "drape_garment: material: ", why);
+    const int nv = mesh.cloth.vertex_count();
+    require(nv > 0, "drape_garment: the garment mesh is empty");
+    require(initial_positions.rows() == nv && initial_positions.allFinite(), "drape_garment: initial_positions has ",
+            initial_positions.rows(), " rows (need ", nv, ", all finite)");
+
+    cloth::ClothMesh cm = mesh.cloth;
+    cm.positions = initial_positions;
+    cloth::Simulator sim(std::move(cm), material, options.simulator);
+    sim.set_obstacle(cloth::Obstacle(body_vertices, body_faces));
+    sim.set_stitches(garment_stitches(mesh));
+
+    DrapeSummary summary;
+    summary.vertices = nv;
+    summary.stitches = int(mesh.stitches.size());
+    summary.penetration_tolerance_m = options.penetration_tolerance_m;
+    summary.seam_gap_tolerance_m = options.seam_gap_tolerance_m;
+    const double total_mass = sim.masses().sum();
+    {
+        const cloth::ContactReport r0 = sim.contact_report();
+        summary.initial_penetration_max_m = r0.max_penetration_m;
+        summary.initial_seam_gap_max_m = r0.max_stitch_gap_m;
+        summary.initial_self_intersections = r0.self_intersections;
+    }
+
+    // Steps until the seams are closed and the cloth is at rest (or `budget` runs out).
+    // Returns false when a step failed or the caller cancelled (summary says which).
+    bool settled = false;
+    auto run_steps = [&](int budget, int min_steps, DrapePhase phase) {
+        settled = false;
+        for (int k = 0; k < budget; ++k) {
+            const cloth::StepSummary s = sim.step();
+            if (!s.usable()) {
+                summary.termination = DrapeTermination::step_failed;
+                summary.message = "step " + std::to_string(summary.steps + 1) + ": " + s.brief_report();
+                return false;
+            }
+            ++summary.steps;
+            const double ke = kinetic_energy(sim);
+            summary.kinetic_energy_j = ke;
+            const bool closed = s.max_stitch_gap_m < options.seam_gap_tolerance_m;
+            if (closed && summary.steps_to_close_seams < 0) summary.steps_to_close_seams = summary.steps;
+            const DrapePhase reported = closed && phase == DrapePhase::closing_seams ? DrapePhase::settling : phase;
+            if (options.on_progress && !options.on_progress({reported, summary.steps, s.max_stitch_gap_m, ke, s.newton_iterations,
+                                                         s.seconds_total})) {
+                summary.termination = DrapeTermination::cancelled;
+                summary.message = "cancelled at step " + std::to_string(summary.steps);
+                return false;
+            }
+            if (k + 1 >= min_steps && closed && ke / total_mass < options.settled_kinetic_energy_j_per_kg) {
+                settled = true;
+                return true;
+            }
+        }
+        return true;
+    };
+
+    if (summary.initial_self_intersections > 0 && options.max_untangle_steps > 0) {
+        cloth::SimulatorOptions loose = options.simulator;
+        loose.self_contact = false;
+        cloth::ClothMesh m0 = sim.mesh();
+        m0.positions = initial_positions;
+        cloth::Simulator untangle(std::move(m0), material, loose);
+        untangle.set_obstacle(*sim.obstacle());
+        untangle.set_stitches(sim.stitches());
+        while (summary.untangle_steps < options.max_untangle_steps) {
+            const cloth::StepSummary s = untangle.step();
+            if (!s.usable()) break;
+            ++summary.untangle_steps;
+            if (options.on_progress &&
+                !options.on_progress({DrapePhase::closing_seams, summary.untangle_steps, s.max_stitch_gap_m,
+                                      kinetic_energy(untangle), s.newton_iterations, s.seconds_total})) {
+                summary.termination = DrapeTermination::cancelled;
+                summary.message = "cancelled while untangling";
+                summary.steps = summary.untangle_steps;
+                out_positions = untangle.positions();
+                return summary;
+            }
+            if (summary.untangle_steps % 5 == 0 && untangle.contact_report().self_intersections == 0) break;
+        }
+        summary.steps = summary.untangle_steps;
+        sim.set_positions(untangle.positions());
+        sim.set_velocities(untangle.velocities());
+    }
+    bool ok = run_steps(options.max_steps, options.min_steps, DrapePhase::closing_seams);
+    if (ok) {
+        summary.termination = settled ? DrapeTermination::converged : DrapeTermination::not_settled;
+        if (!settled) summary.message = "seams not closed or cloth not at rest after " + std::to_string(summary.steps) + " steps";
+    }
+    if (ok && settled && options.static_solve) {
+        const Eigen::MatrixX3d before = sim.positions();
+        // The static solve gets its own Newton budget: a twin simulator at the settled state.
+        cloth::SimulatorOptions static_options = options.simulator;
+        static_options.max_newton_iterations = options.static_max_newton_iterations;
+        cloth::ClothMesh settled_mesh = sim.mesh();
+        settled_mesh.positions = before;
+        cloth::Simulator twin(std::move(settled_mesh), material, static_options);
+        twin.set_obstacle(*sim.obstacle());
+        twin.set_stitches(sim.stitches());
+        const cloth::StepSummary s = twin.solve_static();
+        summary.static_gradient_n = s.gradient_inf_norm_n;
+        summary.static_newton_iterations = s.newton_iterations;
+        const cloth::ContactReport r = twin.contact_report();
+        const bool good = s.termination == cloth::StepTermination::converged &&
+                          r.max_penetration_m <= options.penetration_tolerance_m &&
+                          r.max_stitch_gap_m < options.seam_gap_tolerance_m && r.self_intersections == 0;
+        if (good) {
+            sim.set_positions(twin.positions());
+            sim.set_velocities(Eigen::MatrixX3d::Zero(nv, 3));
+        } else {
+            // Equilibrium by stepping instead, from the settled state.
+            const std::string reason = "static solve: " + s.brief_report() + ", penetration " +
+                                       std::to_string(1000 * r.max_penetration_m) + " mm, " +
+                                       std::to_string(r.self_intersections) + " self-intersections";
+            sim.set_positions(before);
+            sim.set_velocities(Eigen::MatrixX3d::Zero(nv, 3));
+            ok = run_steps(options.fallback_steps, 1, DrapePhase::static_solve);
+            if (ok) {
+                summary.termination = settled ? DrapeTermination::converged : DrapeTermination::static_failed;
+                summary.message = reason + (settled ? "; equilibrium reached by stepping instead" : "");
+            }
+        }
+    }
+
+    const cloth::ContactReport r = sim.contact_report();
+    summary.seam_gap_max_m = r.max_stitch_gap_m;
+    summary.penetration_max_m = r.max_penetration_m;
+    summary.vertices_inside = r.vertices_inside;
+    summary.self_intersections = r.self_intersections;
+    summary.converged = summary.termination == DrapeTermination::converged;
+    out_positions = sim.positions();
+    summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+}
+
+}  // namespace drape::garment

@@ -1,0 +1,57 @@
+// `drape dress` end to end: a coarse skirt dressed and draped on the mean female, and bad
+// input rejected with exit code 2.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.hpp"
+#include "test_paths.hpp"
+
+using drape::test::run_drape;
+
+TEST_CASE("drape dress drapes a skirt and writes the summary", "[apps][dress]") {
+    DRAPE_REQUIRE_SHARED(material, "materials/gray-interlock.json");
+    const auto dir = drape::test::scratch_dir("cli_dress");
+    const auto r = run_drape("dress --garment skirt --sizing auto --material gray-interlock --materials \"" +
+                             material.parent_path().string() + "\" --edge 4 --no-render --out \"" +
+                             dir.string() + "\"");
+    INFO(r.out);
+    // Exit 0 when the drape is usable, 1 (after writing every file) when it is not.
+    REQUIRE((r.exit_code == 0 || r.exit_code == 1));
+    std::ifstream in(dir / "summary.json");
+    const nlohmann::json s = nlohmann::json::parse(in);
+    CHECK(s["garment"] == "skirt");
+    CHECK(s["usable"].get<bool>() == (r.exit_code == 0));
+    CHECK(s["converged"].is_boolean());
+    CHECK(s["seam_gap_max_m"].get<double>() < 1e-3);
+    CHECK(s["penetration_max_m"].get<double>() <= 1e-3);
+    CHECK(s["self_intersections"].get<int>() >= 0);
+    CHECK(s["vertices"].get<int>() > 50);
+    CHECK(s["seconds"].get<double>() > 0);
+    for (const char* key : {"l1", "r1", "r2", "alpha"}) CHECK(s["sizing"][key].is_number());
+    for (const char* file : {"garment.obj", "garment.glb", "pattern.svg", "pattern.dxf", "pattern.json"})
+        CHECK(std::filesystem::file_size(dir / file) > 100);
+    std::ifstream glb(dir / "garment.glb", std::ios::binary);
+    char magic[4];
+    glb.read(magic, 4);
+    CHECK(std::string(magic, 4) == "glTF");
+}
+
+TEST_CASE("drape dress rejects bad input with exit code 2", "[apps][dress]") {
+    const auto dir = drape::test::scratch_dir("cli_dress_bad");
+    auto r = run_drape("dress --garment cape --sizing auto --material x.json --out \"" + dir.string() + "\"");
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("cape") != std::string::npos);
+    r = run_drape("dress --garment skirt --sizing auto --material no-such-fabric --materials \"" + dir.string() +
+                  "\" --out \"" + dir.string() + "\"");
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("no-such-fabric") != std::string::npos);
+    r = run_drape("dress --garment skirt --sizing auto --material gray-interlock --materials \"" + dir.string() +
+                  "\" --pose cartwheel --out \"" + dir.string() + "\"");
+    CHECK(r.exit_code == 2);
+}
