@@ -3,6 +3,7 @@
 // rest-state figures to compare against ArcSim 0.3.1 (docs/cloth.md, docs/benchmarks.md).
 #include "commands.hpp"
 #include "json_io.hpp"
+#include "material_arg.hpp"
 
 #include <drape/cloth/material.hpp>
 #include <drape/cloth/scenes.hpp>
@@ -32,11 +33,6 @@ struct BenchClothArgs {
     bool quiet = false;
 };
 
-cloth::Material resolve_material(const std::string& name_or_path) {
-    if (std::filesystem::exists(name_or_path)) return cloth::load_material(name_or_path);
-    return cloth::builtin_material(name_or_path);
-}
-
 void run_bench_cloth(const BenchClothArgs& args) {
     require(args.n >= 2 && args.n % 2 == 0 && args.n <= 512, "drape bench-cloth: --n ", args.n,
             " must be even and in [2, 512]");
@@ -47,7 +43,7 @@ void run_bench_cloth(const BenchClothArgs& args) {
     if (args.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, args.threads);
 
     const cloth::AnchorScene scene = cloth::make_anchor_scene(args.n);
-    cloth::Simulator sim(scene.cloth, resolve_material(args.material), scene.options);
+    cloth::Simulator sim(scene.cloth, load_material_arg(args.material, ""), scene.options);
     sim.set_obstacle(cloth::Obstacle(scene.sphere.positions, scene.sphere.faces));
     const int steps = static_cast<int>(std::lround(args.seconds / scene.options.time_step_s));
     int failed = 0, iterations = 0;

@@ -6,6 +6,7 @@
 #include "garment_json.hpp"
 #include "image_io.hpp"
 #include "json_io.hpp"
+#include "material_arg.hpp"
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/pose.hpp>
@@ -27,7 +28,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -52,29 +52,6 @@ struct DressArgs {
     bool no_render = false;
 };
 
-/// NAME (a measured fabric in --materials DIR or $DRAPE_SHARED_DIR/materials) or a path.
-fs::path resolve_material(const DressArgs& args) {
-    const fs::path given(args.material);
-    std::error_code ec;
-    if (given.has_extension() || given.has_parent_path()) {
-        if (!fs::is_regular_file(given, ec)) throw IoError("--material: file '" + args.material + "' not found");
-        return given;
-    }
-    std::vector<fs::path> dirs;
-    if (!args.materials_dir.empty()) dirs.emplace_back(args.materials_dir);
-    if (const char* shared = std::getenv("DRAPE_SHARED_DIR")) dirs.push_back(fs::path(shared) / "materials");
-    if (dirs.empty())
-        throw InvalidInput("--material '" + args.material +
-                           "' is a name: give --materials DIR or set DRAPE_SHARED_DIR to find it");
-    std::string tried;
-    for (const fs::path& d : dirs) {
-        const fs::path p = d / (args.material + ".json");
-        if (fs::is_regular_file(p, ec)) return p;
-        tried += (tried.empty() ? "" : ", ") + p.string();
-    }
-    throw InvalidInput("--material '" + args.material + "': no such fabric (tried " + tried + ")");
-}
-
 body::Pose resolve_pose(const std::string& name) {
     if (name == "a_pose") return body::named_pose(body::NamedPose::a_pose);
     if (name == "arms_down") return body::named_pose(body::NamedPose::arms_down);
@@ -82,36 +59,6 @@ body::Pose resolve_pose(const std::string& name) {
     if (name == "t_pose") return body::named_pose(body::NamedPose::t_pose);
     if (fs::path(name).extension() == ".json") return pose_from_json(read_json_file(name), name);
     throw InvalidInput("--pose '" + name + "' is not a_pose, arms_down, walking, t_pose or a POSE.json file");
-}
-
-GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& m) {
-    GarmentSizing g;
-    g.type = type;
-    switch (type) {
-        case GarmentType::skirt: g.skirt = garment::propose_skirt_sizing(m); break;
-        case GarmentType::pants: g.pants = garment::propose_pants_sizing(m); break;
-        case GarmentType::tshirt: g.tshirt = garment::propose_tshirt_sizing(m); break;
-        case GarmentType::dress: g.dress = garment::propose_dress_sizing(m); break;
-    }
-    return g;
-}
-
-/// The draped garment as OBJ: v = world metres, vt = pattern uv, one group per panel.
-void write_garment_obj(const fs::path& path, const garment::Pattern& pattern, const garment::GarmentMesh& m,
-                       const Eigen::MatrixX3d& X) {
-    std::ostringstream os;
-    os << "# drape dress '" << pattern.name << "': draped garment, world metres; vt = pattern uv\n";
-    for (int v = 0; v < X.rows(); ++v) os << "v " << X(v, 0) << " " << X(v, 1) << " " << X(v, 2) << "\n";
-    for (int v = 0; v < X.rows(); ++v) os << "vt " << m.uv(v, 0) << " " << m.uv(v, 1) << "\n";
-    int panel = -1;
-    for (int f = 0; f < m.cloth.face_count(); ++f) {
-        const int p = m.panel_of_vertex(m.cloth.faces(f, 0));
-        if (p != panel) os << "g " << pattern.panels[size_t(panel = p)].name << "\n";
-        os << "f " << m.cloth.faces(f, 0) + 1 << "/" << m.cloth.faces(f, 0) + 1 << " " << m.cloth.faces(f, 1) + 1
-           << "/" << m.cloth.faces(f, 1) + 1 << " " << m.cloth.faces(f, 2) + 1 << "/" << m.cloth.faces(f, 2) + 1
-           << "\n";
-    }
-    write_text_atomically(path, os.str());
 }
 
 /// A glTF 2.0 binary with one mesh: float positions, uv (TEXCOORD_0) and uint32 indices.
@@ -205,8 +152,8 @@ void run_dress(const DressArgs& args) {
     const GarmentType type = garment_type_from_name(args.garment);
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
     const body::Pose pose = resolve_pose(args.pose);
-    const fs::path material_file = resolve_material(args);
-    const cloth::Material material = cloth::load_material(material_file);
+    std::string material_source;
+    const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
     const body::SemanticRequest request =
         args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
     const GarmentSizing given =
@@ -251,13 +198,13 @@ void run_dress(const DressArgs& args) {
         garment::drape_garment(mesh, X0, posed.vertices, model.faces, material, options, X);
     std::cout << "drape dress: " << pattern.name << ", " << draped.brief_report() << "\n";
 
-    write_garment_obj(dir / "garment.obj", pattern, mesh, X);
+    write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
     write_garment_glb(dir / "garment.glb", mesh, X);
     if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh, X);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const nlohmann::json report = {{"garment", garment_type_name(type)},
                                    {"sizing", to_json(sizing)},
-                                   {"material", material_file.string()},
+                                   {"material", material_source},
                                    {"pose", args.pose},
                                    {"edge_cm", args.edge_cm},
                                    {"vertices", draped.vertices},
@@ -294,8 +241,8 @@ void add_dress_command(CLI::App& app) {
                     "the body's measurements")
         ->required();
     cmd->add_option("--material", args->material,
-                    "a measured fabric name (e.g. gray-interlock, looked up as NAME.json in --materials or "
-                    "$DRAPE_SHARED_DIR/materials) or an ArcSim material JSON path")
+                    "a measured fabric name (e.g. gray-interlock: NAME.json in --materials if there, else "
+                    "the built-in fabric) or a material file (ours or ArcSim's)")
         ->required();
     cmd->add_option("--materials", args->materials_dir, "folder of fabric JSON files");
     cmd->add_option("--body", args->body,

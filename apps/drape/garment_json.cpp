@@ -1,5 +1,10 @@
 #include "garment_json.hpp"
 
+#include <drape/core/atomic_file.hpp>
+#include <drape/garment/sizing_proposal.hpp>
+
+#include <sstream>
+
 #include "json_io.hpp"
 
 #include <drape/core/errors.hpp>
@@ -94,6 +99,37 @@ garment::Pattern make_pattern(const GarmentSizing& g) {
         case GarmentType::dress: return garment::make_dress(g.dress);
     }
     throw InvalidInput("unknown garment type");
+}
+
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured) {
+    GarmentSizing g;
+    g.type = type;
+    switch (type) {
+        case GarmentType::skirt: g.skirt = garment::propose_skirt_sizing(measured); break;
+        case GarmentType::pants: g.pants = garment::propose_pants_sizing(measured); break;
+        case GarmentType::tshirt: g.tshirt = garment::propose_tshirt_sizing(measured); break;
+        case GarmentType::dress: g.dress = garment::propose_dress_sizing(measured); break;
+    }
+    return g;
+}
+
+void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,
+                       const garment::GarmentMesh& m, const Eigen::MatrixX3d& positions,
+                       const std::string& what) {
+    std::ostringstream os;
+    os << "# drape '" << pattern.name << "': " << what << ", metres; vt = pattern uv\n";
+    for (Eigen::Index v = 0; v < positions.rows(); ++v)
+        os << "v " << positions(v, 0) << " " << positions(v, 1) << " " << positions(v, 2) << "\n";
+    for (int v = 0; v < m.cloth.vertex_count(); ++v) os << "vt " << m.uv(v, 0) << " " << m.uv(v, 1) << "\n";
+    int group = -1;
+    for (int f = 0; f < m.cloth.face_count(); ++f) {
+        const int p = m.panel_of_vertex(m.cloth.faces(f, 0));
+        if (p != group) os << "g " << pattern.panels[static_cast<std::size_t>(group = p)].name << "\n";
+        os << "f";
+        for (int k = 0; k < 3; ++k) os << " " << m.cloth.faces(f, k) + 1 << "/" << m.cloth.faces(f, k) + 1;
+        os << "\n";
+    }
+    write_text_atomically(path, os.str());
 }
 
 }  // namespace drape::app

@@ -3,12 +3,17 @@
 // h2, l1}; dress {"bodice": {tshirt keys}, "skirt": {skirt keys}}. Centimetres, degrees.
 #pragma once
 
+#include <drape/body/measurements.hpp>
 #include <drape/garment/dress.hpp>
+#include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pants.hpp>
 #include <drape/garment/pattern.hpp>
 
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Core>
+
+#include <filesystem>
 #include <string>
 
 namespace drape::app {
@@ -33,6 +38,16 @@ struct GarmentSizing {
 /// pattern is made).
 GarmentSizing sizing_from_json(GarmentType type, const nlohmann::json& j, const std::string& file);
 nlohmann::json to_json(const GarmentSizing& sizing);
+
+/// The sizing each template proposes for a body (garment::propose_*_sizing).
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured);
+
+/// A garment mesh as OBJ: `v` = positions (#V x 3, metres: the draped garment, or the flat
+/// layout (u, v, 0)), `vt` = pattern uv, one group per panel; `what` goes in the header.
+/// Written atomically.
+void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,
+                       const garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions,
+                       const std::string& what);
 
 /// The pattern of a sizing (make_circle_skirt, make_pants, make_tshirt or make_dress).
 garment::Pattern make_pattern(const GarmentSizing& sizing);

@@ -2,32 +2,16 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/vision/image_io.hpp>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
-#include <system_error>
 
 namespace drape::app {
 
 namespace {
-
-cv::Mat read_image(const std::filesystem::path& path, int flags, const std::string& what) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        throw IoError("cannot read " + what + " '" + path.string() + "': file missing");
-    cv::Mat image;
-    try {
-        image = cv::imread(path.string(), flags);
-    } catch (const cv::Exception& e) {
-        throw IoError("cannot read " + what + " '" + path.string() + "': " + e.what());
-    }
-    if (image.empty())
-        throw IoError("cannot read " + what + " '" + path.string() +
-                      "': not a readable image (PNG, JPEG, ...)");
-    return image;
-}
 
 body::Mask to_mask(const cv::Mat& gray) {
     body::Mask m;
@@ -44,13 +28,23 @@ body::Mask to_mask(const cv::Mat& gray) {
 
 }  // namespace
 
-cv::Mat read_photo(const std::filesystem::path& path) {
-    return read_image(path, cv::IMREAD_COLOR, "photo");
-}
+cv::Mat read_photo(const std::filesystem::path& path) { return vision::load_image(path); }
 
 body::Mask read_mask(const std::filesystem::path& path, const std::string& what) {
-    // IMREAD_GRAYSCALE also honours EXIF orientation, like the photo.
-    const cv::Mat gray = read_image(path, cv::IMREAD_GRAYSCALE, what + " mask");
+    // Read like the photo (EXIF orientation, size limits), then to one channel.
+    // Any size: a mask of the wrong size gets its own message against the photo's.
+    vision::ImageLimits limits;
+    limits.min_side_px = 1;
+    cv::Mat colour;
+    try {
+        colour = vision::load_image(path, limits);
+    } catch (const IoError& e) {
+        throw IoError(what + " mask: " + e.what());
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(what + " mask: " + e.what());
+    }
+    cv::Mat gray;
+    cv::cvtColor(colour, gray, cv::COLOR_BGR2GRAY);
     body::Mask m = to_mask(gray);
     if (m.count() == 0)
         throw InvalidInput(what + " mask '" + path.string() + "' is empty (every pixel is 0)");
@@ -58,10 +52,7 @@ body::Mask read_mask(const std::filesystem::path& path, const std::string& what)
 }
 
 LabelMasks read_label_masks(const std::filesystem::path& path) {
-    const cv::Mat labels = read_image(path, cv::IMREAD_UNCHANGED, "label map");
-    if (labels.type() != CV_8UC1)
-        throw InvalidInput("label map '" + path.string() +
-                           "' must be an 8-bit single-channel PNG of class ids");
+    const cv::Mat labels = vision::load_label_map(path, "label map");
     cv::Mat person(labels.size(), CV_8UC1), skin(labels.size(), CV_8UC1);
     for (int y = 0; y < labels.rows; ++y) {
         for (int x = 0; x < labels.cols; ++x) {

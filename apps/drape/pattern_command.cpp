@@ -44,34 +44,7 @@ GarmentSizing auto_sizing(GarmentType type, const std::string& body_file) {
     const body::ShapeSummary s =
         body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!s.usable()) throw std::runtime_error("drape pattern: body shaping failed: " + s.brief_report());
-    GarmentSizing g;
-    g.type = type;
-    switch (type) {
-        case GarmentType::skirt: g.skirt = garment::propose_skirt_sizing(s.measured); break;
-        case GarmentType::pants: g.pants = garment::propose_pants_sizing(s.measured); break;
-        case GarmentType::tshirt: g.tshirt = garment::propose_tshirt_sizing(s.measured); break;
-        case GarmentType::dress: g.dress = garment::propose_dress_sizing(s.measured); break;
-    }
-    return g;
-}
-
-// The flat layout as OBJ: v = pattern (x, y, 0) metres, vt = uv, one group per panel.
-void write_flat_obj(const std::filesystem::path& path, const garment::Pattern& pattern,
-                    const garment::GarmentMesh& m) {
-    std::ostringstream os;
-    os << "# drape pattern '" << pattern.name << "': flat layout, metres; vt = pattern uv\n";
-    for (int v = 0; v < m.cloth.vertex_count(); ++v)
-        os << "v " << m.cloth.pattern(v, 0) << " " << m.cloth.pattern(v, 1) << " 0\n";
-    for (int v = 0; v < m.cloth.vertex_count(); ++v) os << "vt " << m.uv(v, 0) << " " << m.uv(v, 1) << "\n";
-    int group = -1;
-    for (int f = 0; f < m.cloth.face_count(); ++f) {
-        const int p = m.panel_of_vertex(m.cloth.faces(f, 0));
-        if (p != group) os << "g " << pattern.panels[group = p].name << "\n";
-        os << "f";
-        for (int k = 0; k < 3; ++k) os << " " << m.cloth.faces(f, k) + 1 << "/" << m.cloth.faces(f, k) + 1;
-        os << "\n";
-    }
-    write_text_atomically(path, os.str());
+    return proposed_sizing(type, s.measured);
 }
 
 void run_pattern(const PatternArgs& args) {
@@ -93,7 +66,9 @@ void run_pattern(const PatternArgs& args) {
     options.target_edge_cm = args.edge_cm;
     garment::GarmentMesh mesh;
     const garment::MeshSummary summary = garment::mesh_pattern(pattern, options, mesh);
-    write_flat_obj(dir / "pattern_mesh.obj", pattern, mesh);
+    Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(mesh.cloth.vertex_count(), 3);
+    flat.leftCols<2>() = mesh.cloth.pattern.topRows(mesh.cloth.vertex_count());
+    write_garment_obj(dir / "pattern_mesh.obj", pattern, mesh, flat, "flat layout");
     nlohmann::json report = {{"garment", garment_type_name(type)},
                              {"sizing", to_json(sizing)},
                              {"panels", pattern.panels.size()},

@@ -1,5 +1,7 @@
 #include "vision_json.hpp"
 
+#include "joints_json.hpp"
+
 #include "json_io.hpp"
 
 #include <drape/core/errors.hpp>
@@ -10,55 +12,16 @@ namespace drape::app {
 
 vision::Joints read_vision_joints(const std::filesystem::path& path, int width, int height,
                                   double* shift_out) {
-    const std::string file = path.string();
-    const nlohmann::json j = read_json_file(path);
-    reject_unknown_keys(j, {"joints", "joint_names", "image_size", "pixel_origin"}, file);
-    double shift = -0.5;  // one-based (MATLAB): pixel 1's centre is at 1
-    if (j.contains("pixel_origin")) {
-        const std::string o = j["pixel_origin"].is_string() ? j["pixel_origin"].get<std::string>()
-                                                             : j["pixel_origin"].dump();
-        if (o == "one_based") shift = -0.5;
-        else if (o == "zero_based") shift = 0.5;
-        else if (o == "corner") shift = 0.0;
-        else
-            throw InvalidInput(file + ": field 'pixel_origin' = " + o +
-                               " is not one of one_based, zero_based, corner");
-    }
-    if (!j.contains("joints") || !j["joints"].is_array() || j["joints"].size() != 14)
-        throw InvalidInput(file + ": field 'joints' must be an array of 14 [x, y] pixel pairs "
-                                  "(right_ankle ... head)");
-    if (j.contains("joint_names")) {
-        const auto& names = j["joint_names"];
-        bool ok = names.is_array() && names.size() == 14;
-        for (size_t i = 0; ok && i < names.size(); ++i)
-            ok = names[i].is_string() && names[i].get<std::string>() == vision::kJointNames[i];
-        if (!ok)
-            throw InvalidInput(file + ": field 'joint_names' must list the 14 joints in the "
-                                      "Fashionista order (right_ankle ... head); got " + names.dump());
-    }
-    if (j.contains("image_size")) {
-        const auto& s = j["image_size"];
-        if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() ||
-            s[0].get<double>() != width || s[1].get<double>() != height)
-            throw InvalidInput(file + ": field 'image_size' = " + s.dump() +
-                               " does not match the photo's " + std::to_string(width) + " x " +
-                               std::to_string(height) + " pixels");
-    }
+    const JointsFile file = read_joints_file(path, width, height);
     vision::Joints out;
-    for (size_t i = 0; i < 14; ++i) {
-        const auto& p = j["joints"][i];
-        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-            throw InvalidInput(file + ": joint " + std::to_string(i) + " (" +
-                               std::string(vision::kJointNames[i]) + ") must be [x, y] numbers, got " +
-                               p.dump());
-        out.px[i] = Eigen::Vector2d(p[0].get<double>() + shift, p[1].get<double>() + shift);
-    }
+    for (int i = 0; i < vision::kJointCount; ++i)
+        out.px[static_cast<std::size_t>(i)] = file.joints_px.row(i).transpose();
     try {
         out.validate(width, height);
     } catch (const InvalidInput& e) {
-        throw InvalidInput(file + ": " + e.what());
+        throw InvalidInput(path.string() + ": " + e.what());
     }
-    if (shift_out) *shift_out = shift;
+    if (shift_out) *shift_out = origin_offset(file.origin);
     return out;
 }
 

@@ -48,6 +48,25 @@ void parallel_range(int n, F&& body, int grain = 256) {
     });
 }
 
+// Union-find over vertex ids (pieces of a mesh, stitched vertex groups).
+struct DisjointSets {
+    std::vector<int> parent;
+    explicit DisjointSets(int n) : parent(static_cast<std::size_t>(n)) {
+        for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
+    }
+    int find(int i) {
+        while (parent[static_cast<std::size_t>(i)] != i)
+            i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+        return i;
+    }
+    /// Joins the sets of a and b; the smaller root id represents both.
+    void join(int a, int b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+};
+
 // A body-contact record of one free vertex for the current Newton iteration.
 struct VertexContact {
     int vertex = -1;
@@ -356,12 +375,11 @@ struct Simulator::Impl {
         }
     }
 
-    // The lagged friction of a step: vertices within the thickness at the step's start, with
-    // their contact normal and penalty force there.
-    void prepare_friction(const Eigen::MatrixX3d& p) {
+    // The lagged friction of a time step, from the contacts queried at its start: vertices
+    // within the thickness, with their contact normal and penalty force there.
+    void lag_friction() {
         friction.clear();
-        if (!obstacle || options.obstacle_friction <= 0) return;
-        update_obstacle_contacts(p);
+        if (step_dt <= 0 || !obstacle || options.obstacle_friction <= 0) return;
         const double h = options.contact_thickness_m;
         for (const VertexContact& c : contacts)
             if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h)
@@ -540,12 +558,7 @@ struct Simulator::Impl {
         const int nv = mesh.vertex_count();
         Eigen::MatrixX2d uv = Eigen::MatrixX2d::Zero(nv, 2);
         std::vector<bool> seen(static_cast<std::size_t>(nv), false);
-        std::vector<int> parent(static_cast<std::size_t>(nv));
-        for (int i = 0; i < nv; ++i) parent[static_cast<std::size_t>(i)] = i;
-        auto find = [&](int i) {
-            while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-            return i;
-        };
+        DisjointSets pieces(nv);
         for (int f = 0; f < mesh.face_count(); ++f)
             for (int c = 0; c < 3; ++c) {
                 const int vtx = mesh.faces(f, c);
@@ -553,10 +566,10 @@ struct Simulator::Impl {
                     uv.row(vtx) = mesh.pattern.row(mesh.pattern_faces(f, c));
                     seen[static_cast<std::size_t>(vtx)] = true;
                 }
-                parent[static_cast<std::size_t>(find(vtx))] = find(mesh.faces(f, (c + 1) % 3));
+                pieces.join(vtx, mesh.faces(f, (c + 1) % 3));
             }
         std::vector<int> piece(static_cast<std::size_t>(nv));
-        for (int i = 0; i < nv; ++i) piece[static_cast<std::size_t>(i)] = find(i);
+        for (int i = 0; i < nv; ++i) piece[static_cast<std::size_t>(i)] = pieces.find(i);
         self_contact.set_rest_filter(uv, piece, 2 * options.contact_thickness_m);
     }
 
@@ -621,12 +634,13 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         // (outer fixed-point iterations around Newton on a fixed energy).
         const bool renew = it == 0 || (inertia_weight == 0 && (it % 8 == 0 || renew_next));
         renew_next = false;
-        if (renew) refresh_stiffness(p);
-        if (inertia_weight == 0 && renew) {
+        if (renew) {
+            refresh_stiffness(p);
             planes.clear();
             plane_of_vertex.assign(static_cast<std::size_t>(p.rows()), -1);
         }
         update_obstacle_contacts(p);
+        if (it == 0) lag_friction();
         // Self-contact candidates within h + twice the expected motion of this iteration
         // (the last step's, or the velocity's over the step): the energy ignores pairs
         // beyond h, and the step bound below shortens any step that could bring an
@@ -919,19 +933,11 @@ ContactReport Simulator::contact_report() const {
     r.max_stitch_gap_m = m.max_stitch_gap(m.x);
     // A sewn garment is one surface: stitched vertices count as one (else the triangles on
     // the two sides of a closed seam, which touch along it, would count as intersecting).
-    std::vector<int> rep(static_cast<std::size_t>(m.x.rows()));
-    for (std::size_t i = 0; i < rep.size(); ++i) rep[i] = static_cast<int>(i);
-    auto find = [&](int i) {
-        while (rep[static_cast<std::size_t>(i)] != i) i = rep[static_cast<std::size_t>(i)] = rep[static_cast<std::size_t>(rep[static_cast<std::size_t>(i)])];
-        return i;
-    };
-    for (const Stitch& st : m.stitches) {
-        const int a = find(st.a), b = find(st.b);
-        if (a != b) rep[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-    }
+    DisjointSets sewn(static_cast<int>(m.x.rows()));
+    for (const Stitch& st : m.stitches) sewn.join(st.a, st.b);
     Eigen::MatrixX3i merged = m.mesh.faces;
     for (Eigen::Index f = 0; f < merged.rows(); ++f)
-        for (int c = 0; c < 3; ++c) merged(f, c) = find(merged(f, c));
+        for (int c = 0; c < 3; ++c) merged(f, c) = sewn.find(merged(f, c));
     r.self_intersections = count_self_intersections(m.x, merged);
     return r;
 }
@@ -974,9 +980,6 @@ StepSummary Simulator::Impl::backward_euler(double h, int halvings_left) {
     for (double& r : m.stitch_rest) r = std::max(0.0, r - m.options.seam_closing_speed_m_per_s * h);
     m.step_start = m.x;
     m.step_dt = h;
-    m.planes.clear();
-    m.plane_of_vertex.assign(static_cast<std::size_t>(m.x.rows()), -1);
-    m.prepare_friction(m.x);
     // Start from the current positions: the inertial prediction could jump through the
     // obstacle or another layer, while every Newton step from here is kept collision-safe.
     Eigen::MatrixX3d p = m.x;
@@ -1014,7 +1017,6 @@ StepSummary Simulator::solve_static() {
     Eigen::MatrixX3d p = m.x;
     std::fill(m.stitch_rest.begin(), m.stitch_rest.end(), 0.0);
     m.step_dt = 0;
-    m.friction.clear();
     StepSummary s = m.minimise(p, m.x, 0, m.options.relative_tolerance);
     if (s.termination != StepTermination::non_finite) {
         m.x = p;
