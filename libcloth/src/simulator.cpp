@@ -657,6 +657,9 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         s.seconds_assembly += seconds_since(t0);
         s.energy_j = e;
         s.gradient_inf_norm_n = free_inf_norm(g);
+        // Without gravity there is no natural force scale: take the initial unbalance.
+        if (it == 0 && weight <= 0)
+            s.tolerance_n = std::max(1e-12, relative_tolerance * s.gradient_inf_norm_n);
         s.newton_iterations = it;
         s.self_contact_pairs = static_cast<int>(pair_hessians.size());
         if (!std::isfinite(e) || !g.allFinite()) {

@@ -26,7 +26,8 @@ struct SimulatorOptions {
     double time_step_s = 5e-3;                           ///< backward-Euler step, > 0
     Eigen::Vector3d gravity_m_per_s2{0.0, 0.0, -9.8};    ///< world frame
     /// Newton stops when the largest entry of the free gradient (N) is below
-    /// relative_tolerance × the largest vertex weight m_i |g| (or 1e-12 N without gravity).
+    /// relative_tolerance × the largest vertex weight m_i |g| (without gravity: × the initial
+    /// largest free force, at least 1e-12 N).
     double relative_tolerance = 1e-6;
     int max_newton_iterations = 100;  ///< per step or per static solve, >= 1
     int max_line_search_halvings = 30;
