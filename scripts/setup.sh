@@ -10,6 +10,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev          # geometry currency
   libceres-dev           # body fitting (brings SuiteSparse, glog, gflags)
+  libopenblas0-serial    # BLAS/LAPACK behind CHOLMOD (serial: no threads competing with TBB)
   libhdf5-dev            # body model files
   libassimp-dev          # glTF / OBJ export and import
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # images (apps)

@@ -474,6 +474,7 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
             "SelfContact::find_candidates: radius must be positive and finite, got ", radius);
     require(p.allFinite(), "SelfContact::find_candidates: positions are not finite");
     radius_ = radius;
+    reference_ = p;
     candidates_.clear();
     const int nf = static_cast<int>(faces_.rows()), ne = static_cast<int>(edges_.size());
     if (nf == 0 || vertex_count_ == 0) return;
@@ -574,6 +575,12 @@ double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& p
     return total;
 }
 
+double SelfContact::covered_radius(const Eigen::MatrixX3d& q) const {
+    if (radius_ <= 0 || q.rows() != reference_.rows()) return 0.0;
+    const double moved = q.rows() > 0 ? (q - reference_).rowwise().norm().maxCoeff() : 0.0;
+    return std::max(0.0, radius_ - 2 * moved);
+}
+
 double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx,
                                   double fraction, double min_separation_m) const {
     require(p.rows() == vertex_count_ && dx.rows() == vertex_count_,
@@ -592,13 +599,14 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
     // Pairs that are not candidates were at distance >= radius; any two points of the
     // cloth approach each other at most at 2 max_v |dx_v − m| per unit α (any m).
     double alpha = 1.0;
+    const double covered = covered_radius(p);
     if (vertex_count_ > 0) {
         const Eigen::RowVector3d mean = dx.colwise().mean();
         const double lmax = 2 * (dx.rowwise() - mean).rowwise().norm().maxCoeff();
         // With radius <= s nothing but a rigid motion (up to rounding in the mean) can be
         // certified.
         if (lmax > 1e-12 * dx.rowwise().norm().maxCoeff())
-            alpha = radius_ > s ? std::min(1.0, (radius_ - floor_of(radius_)) / lmax) : 0.0;
+            alpha = covered > s ? std::min(1.0, (covered - floor_of(covered)) / lmax) : 0.0;
     }
 
     // Per candidate pair: additive CCD. The distance between the primitives moving linearly

@@ -109,6 +109,11 @@ public:
     void find_candidates(const Eigen::MatrixX3d& p, double radius);
 
     const std::vector<ContactPair>& candidates() const { return candidates_; }
+    /// The distance below which every admissible pair at positions q is a candidate:
+    /// candidate_radius() − 2 max_v |q_v − p_v| (p: the last find_candidates positions),
+    /// at least 0; 0 before the first call or on a row-count mismatch. The candidates may be
+    /// reused at q while this is at least the radius the caller needs.
+    double covered_radius(const Eigen::MatrixX3d& q) const;
     const std::vector<std::array<int, 2>>& edges() const { return edges_; }
     /// The radius of the last find_candidates call (0 before the first).
     double candidate_radius() const { return radius_; }
@@ -126,11 +131,10 @@ public:
     /// Largest α in (0, 1] (conservative) such that along p + α' dx, α' ∈ [0, α], every
     /// candidate pair with initial distance d0 > 0 keeps a distance >= its floor
     /// F = s + (1 − fraction)(d0 − s) if d0 > s, else (1 − fraction) d0, where
-    /// s = min_separation_m; and every non-candidate pair (distance >= candidate_radius()
+    /// s = min_separation_m; and every non-candidate pair (distance >= covered_radius(p)
     /// at p) keeps a distance >= s. Pairs with d0 = 0 cannot be certified and are skipped.
-    /// Returns 0 if dx moves the cloth non-rigidly and candidate_radius() <= s (nothing can
+    /// Returns 0 if dx moves the cloth non-rigidly and covered_radius(p) <= s (nothing can
     /// be certified; also before the first find_candidates), and 1 for a rigid translation.
-    /// \pre p are the positions of the last find_candidates call (not checked).
     /// \param fraction in (0, 1]. \throw drape::InvalidInput on shape or range errors.
     double max_safe_step(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx,
                          double fraction = 0.9, double min_separation_m = 0.0) const;
@@ -158,6 +162,7 @@ private:
     double rest_min_distance_ = 0;            // 0: no rest filter
     std::vector<ContactPair> candidates_;
     double radius_ = 0;
+    Eigen::MatrixX3d reference_;              // positions of the last find_candidates call
 };
 
 }  // namespace drape::cloth::internal

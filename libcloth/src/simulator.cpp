@@ -26,6 +26,9 @@ namespace drape::cloth {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// Self-contact candidates are collected this many thicknesses beyond the radius a Newton
+// iteration needs, so that they can be reused while the cloth moves less than half of it.
+constexpr double kCandidateMargin = 1.0;
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -645,10 +648,14 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         // (the last step's, or the velocity's over the step): the energy ignores pairs
         // beyond h, and the step bound below shortens any step that could bring an
         // uncollected pair (farther than the radius now) within reach.
+        // The candidates are reused while they still cover that radius at p (vertices moved
+        // less than half the extra margin since they were collected).
         if (use_self) {
             double expected = last_move;
             if (it == 0) expected = step_dt > 0 ? v_max * step_dt : 0.0;
-            self_contact.find_candidates(p, h + 2 * std::min(expected, 4 * h) + 1e-9);
+            const double needed = h + 2 * std::min(expected, 4 * h) + 1e-9;
+            if (self_contact.covered_radius(p) < needed)
+                self_contact.find_candidates(p, needed + kCandidateMargin * h);
         }
         hessian_mode = inertia_weight > 0 ? options.step_hessian : options.static_hessian;
         std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.0);
