@@ -186,7 +186,9 @@ nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv:
             pt = "dress";
         }
         per.push_back({{"true_type", std::string(vision::to_string(tt))},
-                       {"predicted_type", pt}, {"type_correct", right}, {"iou", v}});
+                       {"predicted_type", pt}, {"type_correct", right}, {"iou", v},
+                       {"true_cues", cues_json(vision::measure_shape_cues(gt_mask, joints))},
+                       {"cues", cues_json(vision::measure_shape_cues(pm, joints))}});
         photo_sum += v;
         totals.iou_sum += v;
         totals.garments += 1;
@@ -335,6 +337,10 @@ void add_eval_segment_command(CLI::App& app) {
                     "SegmentationOptions::smoothness (Potts weight; for tuning)");
     cmd->add_option("--stroke-distance-weight", args->options.stroke_distance_weight,
                     "SegmentationOptions::stroke_distance_weight (for tuning)");
+    cmd->add_option("--stroke-colour-weight", args->options.stroke_colour_weight,
+                    "SegmentationOptions::stroke_colour_weight (for tuning)");
+    cmd->add_option("--superpixel-fraction", args->options.superpixel_fraction,
+                    "SegmentationOptions::superpixel_fraction (for tuning)");
     cmd->callback([args] { run_eval(*args); });
 }
 

@@ -37,6 +37,14 @@ nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 
 }  // namespace
 
+nlohmann::json cues_json(const vision::GarmentShapeCues& c) {
+    return {{"sleeve_fraction", c.sleeve_fraction},
+            {"hem_fraction", c.hem_fraction},
+            {"top_fraction", c.top_fraction},
+            {"between_legs_fraction", c.between_legs_fraction},
+            {"leg_fraction", c.leg_fraction}};
+}
+
 nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
                              const vision::SegmentationSummary& summary,
                              const std::string& image_file, int width, int height,
@@ -66,10 +74,7 @@ nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
         for (const auto& [name, v] : g.features.list())
             features[name] = {{"px", v.first}, {"normalised", v.second}};
         e["features"] = features;
-        e["cues"] = {{"sleeve_fraction", g.cues.sleeve_fraction},
-                     {"hem_fraction", g.cues.hem_fraction},
-                     {"top_fraction", g.cues.top_fraction},
-                     {"between_legs_fraction", g.cues.between_legs_fraction}};
+        e["cues"] = cues_json(g.cues);
         e["wrinkle_density_per_m2"] = number_or_null(g.wrinkles.density_per_m2);
         e["wrinkles"] = {{"usable", g.wrinkles.usable()},
                          {"folds", g.wrinkles.folds},

@@ -2,6 +2,7 @@
 // file reader for libvision and the garments.json writer. The library sees typed joints.
 #pragma once
 
+#include <drape/vision/classify_garment.hpp>
 #include <drape/vision/garment_result.hpp>
 #include <drape/vision/joints.hpp>
 #include <drape/vision/segmentation.hpp>
@@ -30,6 +31,9 @@ nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
                              const vision::SegmentationSummary& summary,
                              const std::string& image_file, int width, int height,
                              const std::string& mode, double person_height_m);
+
+/// The shape cues of a garment (classify_garment.hpp) as a JSON object.
+nlohmann::json cues_json(const vision::GarmentShapeCues& cues);
 
 /// Creates `dir` (and parents). \throw drape::IoError when it cannot.
 void make_output_dir(const std::filesystem::path& dir);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace drape::vision {
 
@@ -84,16 +85,15 @@ Eigen::Vector2d between_legs(const Joints& j, double y) {
     return {0.5 * (xr + xl), y};
 }
 
-double sleeve_run(const cv::Mat& mask, const Eigen::Vector2d& shoulder,
-                  const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand, int radius,
-                  double max_gap, double* arm_length) {
-    const double l1 = (elbow - shoulder).norm(), l2 = (hand - elbow).norm();
-    *arm_length = l1 + l2;
+namespace {
+
+/// Walks a curve `at(s)`, s = 0, 1, ... length px, and returns the last s where the mask
+/// covers it (disc of `radius`) before a gap longer than `max_gap` (0 if none).
+double covered_run(const cv::Mat& mask, double length, int radius, double max_gap,
+                   const std::function<Eigen::Vector2d(double)>& at) {
     double run = 0, gap_start = -1;
-    for (double s = 0; s <= l1 + l2; s += 1.0) {
-        const Eigen::Vector2d p = s <= l1 ? shoulder + (elbow - shoulder) * (l1 > 0 ? s / l1 : 0)
-                                          : elbow + (hand - elbow) * (l2 > 0 ? (s - l1) / l2 : 0);
-        if (covered(mask, p, radius)) {
+    for (double s = 0; s <= length; s += 1.0) {
+        if (covered(mask, at(s), radius)) {
             run = s;
             gap_start = -1;
         } else {
@@ -102,6 +102,19 @@ double sleeve_run(const cv::Mat& mask, const Eigen::Vector2d& shoulder,
         }
     }
     return run;
+}
+
+}  // namespace
+
+double sleeve_run(const cv::Mat& mask, const Eigen::Vector2d& shoulder,
+                  const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand, int radius,
+                  double max_gap, double* arm_length) {
+    const double l1 = (elbow - shoulder).norm(), l2 = (hand - elbow).norm();
+    *arm_length = l1 + l2;
+    return covered_run(mask, l1 + l2, radius, max_gap, [&](double s) -> Eigen::Vector2d {
+        return s <= l1 ? shoulder + (elbow - shoulder) * (l1 > 0 ? s / l1 : 0)
+                       : elbow + (hand - elbow) * (l2 > 0 ? (s - l1) / l2 : 0);
+    });
 }
 
 }  // namespace detail
@@ -134,6 +147,18 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j) {
         if (covered(mask, between_legs(j, y + 0.5), radius)) ++hits;
     }
     c.between_legs_fraction = rows > 0 ? double(hits) / rows : 0.0;
+    // Walks down the two leg lines from the hip row.
+    const int walk_radius = std::max(1, int(std::lround(0.004 * H)));
+    const double walk_gap = 0.03 * H;
+    auto walk = [&](Joint hip, Joint knee, Joint ankle) {
+        return hip_y + covered_run(mask, mask.rows - 1 - hip_y, walk_radius, walk_gap,
+                                   [&](double s) -> Eigen::Vector2d {
+            return {polyline_x_at(j[hip], j[knee], j[ankle], hip_y + s), hip_y + s};
+        });
+    };
+    const double legs = 0.5 * (walk(Joint::right_hip, Joint::right_knee, Joint::right_ankle) +
+                               walk(Joint::left_hip, Joint::left_knee, Joint::left_ankle));
+    c.leg_fraction = (legs - hip_y) / std::max(1.0, ankle_y - hip_y);
     return c;
 }
 
@@ -145,9 +170,15 @@ GarmentType classify_upper(const GarmentShapeCues& c) {
 
 GarmentType classify_lower(const GarmentShapeCues& c) {
     // Long garments are pants: standing legs often touch, so the between-legs cue cannot
-    // tell them from a maxi skirt (a known confusion, docs/vision.md).
-    if (c.hem_fraction >= 0.75) return GarmentType::pants;
-    return c.between_legs_fraction >= 0.5 ? GarmentType::skirt : GarmentType::shorts;
+    // tell them from a maxi skirt (a known confusion, docs/vision.md). "Long" also needs
+    // the garment to run down the legs to near the knees: a garment whose lowest pixels
+    // reach the ankles only through pieces below bare legs (boots) is short.
+    if (c.hem_fraction >= 0.75 && c.leg_fraction >= 0.4) return GarmentType::pants;
+    if (c.between_legs_fraction < 0.5) return GarmentType::shorts;
+    // Standing legs touch, so short garments rarely show a crotch gap: a hem above
+    // mid-thigh (0.25 of hips -> ankles, i.e. about 20 cm below the hip joints) is the
+    // range of shorts (crotch + inseam), a skirt from the waist ends lower.
+    return c.leg_fraction < 0.25 ? GarmentType::shorts : GarmentType::skirt;
 }
 
 }  // namespace drape::vision

@@ -16,7 +16,10 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <iomanip>
+#include <limits>
+#include <queue>
 #include <sstream>
 
 namespace drape::vision {
@@ -29,6 +32,7 @@ bool SegmentationOptions::is_valid(std::string* why) const {
     if (rounds < 1) return fail("rounds must be >= 1");
     if (expansion_cycles < 1) return fail("expansion_cycles must be >= 1");
     if (!(stroke_distance_weight >= 0)) return fail("stroke_distance_weight must be >= 0");
+    if (!(stroke_colour_weight >= 0)) return fail("stroke_colour_weight must be >= 0");
     if (!(layout_weight >= 0)) return fail("layout_weight must be >= 0");
     if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
     if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
@@ -169,6 +173,67 @@ cv::Mat refine(const cv::Mat& image, const cv::Mat& small_ids, const cv::Mat& fi
     return labels;
 }
 
+/// Geodesic distance (px) from the set pixels of `seed` over the 8-connected grid of
+/// `image`: a step costs its length x (1 + colour_weight |dc| / <|dc|>), where |dc| is the
+/// RGB difference of the two pixels and <|dc|> its mean over the image's neighbours, so a
+/// path that crosses a colour edge is long (colour_weight 0: Euclidean-like chamfer).
+cv::Mat geodesic_distance(const cv::Mat& image, const cv::Mat& seed, double colour_weight,
+                          double mean_step) {
+    const int w = image.cols, h = image.rows;
+    cv::Mat dist(image.size(), CV_32F, cv::Scalar(std::numeric_limits<float>::max()));
+    using Item = std::pair<float, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (seed.at<std::uint8_t>(y, x)) {
+                dist.at<float>(y, x) = 0;
+                queue.emplace(0.f, y * w + x);
+            }
+    const float k = float(colour_weight / std::max(1e-6, mean_step));
+    const int dxs[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dys[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+    auto* d = dist.ptr<float>(0);
+    while (!queue.empty()) {
+        const auto [dv, i] = queue.top();
+        queue.pop();
+        if (dv > d[i]) continue;
+        const int x = i % w, y = i / w;
+        const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
+        for (int n = 0; n < 8; ++n) {
+            const int xn = x + dxs[n], yn = y + dys[n];
+            if (xn < 0 || yn < 0 || xn >= w || yn >= h) continue;
+            const cv::Vec3b cn = image.at<cv::Vec3b>(yn, xn);
+            const float db = float(c[0]) - cn[0], dg = float(c[1]) - cn[1], dr = float(c[2]) - cn[2];
+            const float step = (n < 4 ? 1.f : 1.41421356f) *
+                               (1.f + k * std::sqrt(db * db + dg * dg + dr * dr));
+            const int j = yn * w + xn;
+            if (dv + step < d[j]) {
+                d[j] = dv + step;
+                queue.emplace(d[j], j);
+            }
+        }
+    }
+    return dist;
+}
+
+/// Mean RGB distance between 4-neighbours of `image`.
+double mean_colour_step(const cv::Mat& image) {
+    double sum = 0;
+    long n = 0;
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = 0; x < image.cols; ++x) {
+            const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
+            for (const cv::Point q : {cv::Point(x + 1, y), cv::Point(x, y + 1)}) {
+                if (q.x >= image.cols || q.y >= image.rows) continue;
+                const cv::Vec3b cn = image.at<cv::Vec3b>(q);
+                const double db = double(c[0]) - cn[0], dg = double(c[1]) - cn[1],
+                             dr = double(c[2]) - cn[2];
+                sum += std::sqrt(db * db + dg * dg + dr * dr);
+                ++n;
+            }
+        }
+    return n > 0 ? sum / double(n) : 1.0;
+}
+
 int count_classes(const cv::Mat& labels) {
     bool present[256] = {};
     for (auto it = labels.begin<std::uint8_t>(); it != labels.end<std::uint8_t>(); ++it)
@@ -272,6 +337,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
     for (size_t i = 0; i < small_strokes.total(); ++i)
         p.hard.data[i] = static_cast<std::uint8_t>(index_of[small_strokes.data[i]]);
     const double body_h = joints ? joints->body_height_px() : 0.9 * image.rows;
+    const double mean_step = mean_colour_step(small);
     for (size_t k = 0; k < ids.size(); ++k) {
         cv::Mat seed = small_strokes == ids[k];
         if (cv::countNonZero(seed) == 0) {
@@ -281,8 +347,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
             seed = sm > 0;
         }
         p.model_seed.push_back(seed);
-        cv::Mat d;
-        cv::distanceTransform(seed == 0, d, cv::DIST_L2, 3, CV_32F);
+        const cv::Mat d = geodesic_distance(small, seed, o.stroke_colour_weight, mean_step);
         p.prior.push_back(d * (o.stroke_distance_weight / (body_h * s)));
     }
     cv::Mat small_idx = solve(small, p, o);
@@ -317,8 +382,11 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
     const cv::Mat idx = solve(small, p, o);
 
     // Dress or two pieces: one colour model for the upper and lower regions?
-    const cv::Mat bins = colour_bins(small, o.histogram_bins);
-    ColourHistogram hu(o.histogram_bins), hl(o.histogram_bins);
+    // A fixed 16 bins per channel, whatever histogram_bins: the 0.75 threshold on the
+    // Bhattacharyya coefficient depends on the binning.
+    constexpr int kDressBins = 16;
+    const cv::Mat bins = colour_bins(small, kDressBins);
+    ColourHistogram hu(kDressBins), hl(kDressBins);
     for (size_t i = 0; i < idx.total(); ++i) {
         if (idx.data[i] == kUpper) hu.add(bins.ptr<int>(0)[i]);
         if (idx.data[i] == kLower) hl.add(bins.ptr<int>(0)[i]);

@@ -78,3 +78,37 @@ TEST_CASE("garment cues separate skirts, shorts, pants and sleeve lengths", "[vi
     cv::line(longs, p(J::right_elbow), p(J::right_hand), 255, 24);
     CHECK(classify_upper(measure_shape_cues(longs, skirt.joints)) == GarmentType::long_sleeve_top);
 }
+
+TEST_CASE("lower-garment length is the continuous run down the legs", "[vision][garments][classify]") {
+    const test::SyntheticFigure pants = test::make_figure(test::Bottom::pants);
+    const GarmentShapeCues pc = measure_shape_cues(pants.labels == 31, pants.joints);
+    CHECK(pc.leg_fraction > 0.9);
+    // Shorts (cut 75 px below the hips) plus boots at the ankles, separated from them by bare
+    // legs: the lowest pixels reach the ankles, but the garment does not run down the legs.
+    cv::Mat shorts = (pants.labels == 31);
+    shorts.rowRange(380, shorts.rows).setTo(0);
+    cv::Mat with_boots = shorts.clone();
+    cv::rectangle(with_boots, cv::Point(164, 470), cv::Point(192, 550), cv::Scalar(255), cv::FILLED);
+    cv::rectangle(with_boots, cv::Point(208, 470), cv::Point(236, 550), cv::Scalar(255), cv::FILLED);
+    const GarmentShapeCues bc = measure_shape_cues(with_boots, pants.joints);
+    CHECK(bc.hem_fraction > 0.9);
+    CHECK(bc.leg_fraction > 0.25);
+    CHECK(bc.leg_fraction < 0.35);
+    CHECK(classify_lower(bc) == GarmentType::shorts);
+    // The same boots under full pants do not change them.
+    cv::Mat pants_boots = (pants.labels == 31) | with_boots;
+    CHECK(classify_lower(measure_shape_cues(pants_boots, pants.joints)) == GarmentType::pants);
+
+    // A skirt (no crotch gap): shorts when its hem is above mid-thigh, skirt below.
+    const test::SyntheticFigure skirt = test::make_figure(test::Bottom::skirt);
+    cv::Mat mini = (skirt.labels == 42);
+    mini.rowRange(345, mini.rows).setTo(0);  // hem 40 px below the hips of 240 px to the ankles
+    const GarmentShapeCues mc = measure_shape_cues(mini, skirt.joints);
+    CHECK(mc.leg_fraction < 0.2);
+    CHECK(classify_lower(mc) == GarmentType::shorts);
+    cv::Mat knee = (skirt.labels == 42);
+    knee.rowRange(385, knee.rows).setTo(0);
+    const GarmentShapeCues kc = measure_shape_cues(knee, skirt.joints);
+    CHECK(kc.leg_fraction > 0.3);
+    CHECK(classify_lower(kc) == GarmentType::skirt);
+}

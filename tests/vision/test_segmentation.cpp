@@ -25,6 +25,12 @@ TEST_CASE("stroke-guided segmentation recovers a drawn figure", "[vision][segmen
     }
     // Stroked pixels keep their class.
     CHECK(cv::countNonZero((strokes != kUnmarked) & (seg.labels != strokes)) == 0);
+    // The plain (colour-blind) stroke distance works too on flat colours.
+    SegmentationOptions plain;
+    plain.stroke_colour_weight = 0;
+    Segmentation seg_plain;
+    REQUIRE(segment_with_strokes(f.photo, strokes, &f.joints, plain, seg_plain).usable());
+    for (int id : {51, 42}) CHECK(test::iou(seg_plain.labels == id, f.labels == id) > 0.93);
     // Arms over the t-shirt's side and the face above the collar are occlusion borders.
     CHECK(cv::countNonZero(seg.occlusion) > 0);
 }
@@ -80,6 +86,10 @@ TEST_CASE("segmentation rejects bad input and reports a garment-free photo", "[v
     SegmentationOptions bad;
     bad.rounds = 0;
     CHECK_THROWS_AS(segment_automatic(f.photo, f.joints, bad, seg), InvalidInput);
+    SegmentationOptions bad_colour;
+    bad_colour.stroke_colour_weight = -1;
+    CHECK_THROWS_WITH(segment_with_strokes(f.photo, strokes, &f.joints, bad_colour, seg),
+                      Catch::Contains("stroke_colour_weight"));
     // Strokes with only background and skin: a clear "no garment" result, not an error.
     cv::Mat bare = strokes.clone();
     bare.setTo(kUnmarked, (strokes != 0) & (strokes != 41) & (strokes != kUnmarked));

@@ -22,6 +22,13 @@ struct GarmentShapeCues {
     /// Fraction of rows in the lower 40 % of the garment below the crotch whose mid-point
     /// between the legs is garment (1: one tube, a skirt; 0: two legs, pants/shorts).
     double between_legs_fraction = 0;
+    /// How far the garment reaches continuously down the legs: each leg line (hip ->
+    /// knee -> ankle) is walked down row by row from the hip row while the garment covers it
+    /// (disc radius 0.4 % of the body height, gaps up to 3 % bridged); the mean of the two
+    /// lowest rows, as a fraction of the mid-hip -> mid-ankle height like hem_fraction.
+    /// Unlike hem_fraction it ignores garment pieces below a stretch of bare leg (boots,
+    /// shadows or bag pixels merged into the garment).
+    double leg_fraction = 0;
 };
 
 /// Measures the cues of a garment mask (CV_8UC1, non-zero = garment); connected pieces
@@ -30,8 +37,10 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& mask, const Joints& joints);
 
 /// Upper garment: tank top if sleeve_fraction < 0.12, long-sleeve top if >= 0.6, else t-shirt.
 GarmentType classify_upper(const GarmentShapeCues& cues);
-/// Lower garment: pants if hem_fraction >= 0.75; otherwise skirt if between_legs_fraction
-/// >= 0.5, else shorts.
+/// Lower garment: pants if hem_fraction >= 0.75 and leg_fraction >= 0.4 (long, and reaching
+/// at least near the knees without a gap); otherwise shorts if between_legs_fraction < 0.5
+/// (two legs) or leg_fraction < 0.25 (the hem ends above mid-thigh, the range of shorts),
+/// else skirt. Maxi skirts are reported as pants (docs/vision.md).
 GarmentType classify_lower(const GarmentShapeCues& cues);
 
 }  // namespace drape::vision

@@ -26,13 +26,17 @@ struct SegmentationOptions {
     int working_max_side_px = 300;          ///< >= 32
     /// Weight of the contrast-sensitive Potts term (GrabCut's gamma, per unit edge).
     double smoothness = 12.0;               ///< >= 0
-    int histogram_bins = 16;                ///< per channel, in [4, 64]
+    int histogram_bins = 24;                ///< per channel, in [4, 64]
     /// Outer rounds of (graph cut, re-estimate colour models); alpha-expansion cycles per round.
     int rounds = 3;                         ///< >= 1
     int expansion_cycles = 2;               ///< >= 1
     /// Strokes mode: cost per body height of distance from the label's nearest stroke
     /// (a spatial prior that separates classes of similar colour).
-    double stroke_distance_weight = 30.0;   ///< >= 0
+    double stroke_distance_weight = 20.0;   ///< >= 0
+    /// Strokes mode: the distance to a stroke is geodesic; a step across a colour
+    /// difference |dc| costs (1 + stroke_colour_weight |dc| / <|dc|>) times its length,
+    /// <|dc|> being the photo's mean neighbour difference (0 = plain distance).
+    double stroke_colour_weight = 0.5;      ///< >= 0
     /// Automatic mode: weight of the pose-derived spatial prior.
     double layout_weight = 1.0;             ///< >= 0
     bool refine_boundaries = true;

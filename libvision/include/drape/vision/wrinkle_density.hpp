@@ -22,7 +22,7 @@ struct WrinkleOptions {
     /// Gaussian scales of the Hessian ridge filter, fractions of the body height.
     std::vector<double> scale_fractions = {0.006, 0.009, 0.013};
     /// The garment is resampled so that the body is this many pixels tall before filtering.
-    double working_body_height_px = 400;  ///< >= 100
+    double working_body_height_px = 800;  ///< >= 100
     /// Threshold on the scale-normalised ridge strength sigma^2 |lambda| of the luminance
     /// in [0, 1] (about the depth of a shading groove, as a fraction of white).
     double ridge_threshold = 0.012;  ///< > 0
