@@ -101,6 +101,18 @@ Mat34 gather(const Eigen::MatrixX3d& q, const ContactPair& pair) {
     return x;
 }
 
+// A lower bound of a pair's distance: the gap between the bounding boxes of its two
+// primitives (columns [0, na) and [na, 4) of x). Cheap, to skip exact distances of far pairs.
+double box_gap_squared(ContactPair::Kind kind, const Mat34& x) {
+    const int na = first_primitive_size(kind);
+    const Eigen::Vector3d amin = x.middleCols(0, na).rowwise().minCoeff();
+    const Eigen::Vector3d amax = x.middleCols(0, na).rowwise().maxCoeff();
+    const Eigen::Vector3d bmin = x.middleCols(na, 4 - na).rowwise().minCoeff();
+    const Eigen::Vector3d bmax = x.middleCols(na, 4 - na).rowwise().maxCoeff();
+    const Eigen::Vector3d gap = (amin - bmax).cwiseMax(bmin - amax).cwiseMax(0.0);
+    return gap.squaredNorm();
+}
+
 Eigen::AlignedBox3d box_of(const Eigen::MatrixX3d& p, const int* v, int n, double inflate) {
     Eigen::AlignedBox3d b;
     for (int k = 0; k < n; ++k) b.extend(p.row(v[k]).transpose());
@@ -546,9 +558,12 @@ double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& p
     const double h2 = params.thickness_m * params.thickness_m;
     std::vector<std::vector<int>> active(chunk_count(n));
     for_each_chunk(n, [&](int c, int begin, int end) {
-        for (int i = begin; i < end; ++i)
-            if (pair_distance_squared(candidates_[i].kind, gather(q, candidates_[i])) < h2)
+        for (int i = begin; i < end; ++i) {
+            const Mat34 x = gather(q, candidates_[i]);
+            if (box_gap_squared(candidates_[i].kind, x) < h2 &&
+                pair_distance_squared(candidates_[i].kind, x) < h2)
                 active[c].push_back(i);
+        }
     });
     std::vector<int> order;
     for (const auto& list : active) order.insert(order.end(), list.begin(), list.end());
@@ -630,6 +645,10 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
             }
             const double l = la + lb;
             if (!(l > 0)) continue;
+            // The distance stays >= d0 − α l >= the floor over all of [0, 1] when
+            // d0 >= s + l / fraction; the box gap bounds d0 from below.
+            const double clear = s + l / fraction;
+            if (box_gap_squared(pair.kind, x0) >= clear * clear) continue;
             const double d0 = std::sqrt(pair_distance_squared(pair.kind, x0));
             if (!(d0 > 0)) continue;
             const double floor = floor_of(d0);

@@ -141,7 +141,8 @@ std::string StepSummary::brief_report() const {
        << gradient_inf_norm_n << " N (tol " << tolerance_n << "), E " << energy_j << " J, "
        << contacts << " contacts, " << self_contact_pairs << " self-contact pairs, stitch gap "
        << max_stitch_gap_m * 1e3 << " mm, " << seconds_total * 1e3 << " ms (assembly "
-       << seconds_assembly * 1e3 << ", solve " << seconds_solve * 1e3 << ")";
+       << seconds_assembly * 1e3 << ", solve " << seconds_solve * 1e3 << ", contact "
+       << seconds_contact * 1e3 << ")";
     if (substeps > 1) os << ", " << substeps << " substeps";
     if (!message.empty()) os << "; " << message;
     return os.str();
@@ -642,6 +643,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             planes.clear();
             plane_of_vertex.assign(static_cast<std::size_t>(p.rows()), -1);
         }
+        auto tc = Clock::now();
         update_obstacle_contacts(p);
         if (it == 0) lag_friction();
         // Self-contact candidates within h + twice the expected motion of this iteration
@@ -657,11 +659,13 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             if (self_contact.covered_radius(p) < needed)
                 self_contact.find_candidates(p, needed + kCandidateMargin * h);
         }
+        const double contact_seconds = seconds_since(tc);
+        s.seconds_contact += contact_seconds;
         hessian_mode = inertia_weight > 0 ? options.step_hessian : options.static_hessian;
         std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.0);
         pair_hessians.clear();
         const double e = total(p, &g, hessian.valuePtr(), &pair_hessians);
-        s.seconds_assembly += seconds_since(t0);
+        s.seconds_assembly += seconds_since(t0) - contact_seconds;
         s.energy_j = e;
         s.gradient_inf_norm_n = free_inf_norm(g);
         // Without gravity there is no natural force scale: take the initial unbalance.
@@ -804,8 +808,10 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                 const int d = dof(static_cast<int>(i), c);
                 if (d >= 0) dx(i, c) = step(d);
             }
+        tc = Clock::now();
         double alpha = obstacle_step_bound(dx);
         if (use_self) alpha = std::min(alpha, self_contact.max_safe_step(p, dx * alpha, 0.9) * alpha);
+        s.seconds_contact += seconds_since(tc);
         const double slope = -step.dot(rhs);
         bool accepted = false;
         t0 = Clock::now();
@@ -960,6 +966,7 @@ void accumulate(StepSummary& total, const StepSummary& part) {
     total.regularised_factorisations += part.regularised_factorisations;
     total.seconds_assembly += part.seconds_assembly;
     total.seconds_solve += part.seconds_solve;
+    total.seconds_contact += part.seconds_contact;
     total.termination = part.termination;
     total.message = part.message;
     total.gradient_inf_norm_n = part.gradient_inf_norm_n;

@@ -5,8 +5,38 @@
 #else
 #include <Eigen/SparseCholesky>
 #endif
+#ifdef DRAPE_CLOTH_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 namespace drape::cloth::internal {
+
+namespace {
+
+// CHOLMOD (SuiteSparse 5) opens OpenMP regions with a compiled-in num_threads(4) inside its
+// supernodal factorisation. On a 2-core machine that already runs TBB workers, those extra
+// threads spin and preempt each other (≈ 30 % of the time in profiles). While CHOLMOD runs
+// on this thread, dynamic adjustment with one thread caps every region at one thread; the
+// previous settings (per-thread ICVs, so other threads are unaffected) come back after.
+class SingleThreadedOpenMp {
+public:
+#ifdef DRAPE_CLOTH_HAVE_OPENMP
+    SingleThreadedOpenMp() : dynamic_(omp_get_dynamic()), threads_(omp_get_max_threads()) {
+        omp_set_dynamic(1);
+        omp_set_num_threads(1);
+    }
+    ~SingleThreadedOpenMp() {
+        omp_set_num_threads(threads_);
+        omp_set_dynamic(dynamic_);
+    }
+
+private:
+    int dynamic_;
+    int threads_;
+#endif
+};
+
+}  // namespace
 
 struct SparseSpdSolver::Impl {
 #ifdef DRAPE_CLOTH_HAVE_CHOLMOD
@@ -33,6 +63,7 @@ void SparseSpdSolver::reset() {
 }
 
 bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& m) {
+    [[maybe_unused]] const SingleThreadedOpenMp single_threaded;
     if (!impl_->analysed) {
         impl_->solver.analyzePattern(m);
         impl_->analysed = true;
@@ -47,6 +78,7 @@ bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& m) {
 }
 
 Eigen::VectorXd SparseSpdSolver::solve(const Eigen::VectorXd& rhs) const {
+    [[maybe_unused]] const SingleThreadedOpenMp single_threaded;
     return impl_->solver.solve(rhs);
 }
 

@@ -102,8 +102,11 @@ struct StepSummary {
     double gradient_inf_norm_n = 0;      ///< at the returned state, free vertices only
     double tolerance_n = 0;              ///< the absolute tolerance that was used
     double energy_j = 0;                 ///< incremental potential (or potential, static)
-    double seconds_assembly = 0;
+    double seconds_assembly = 0;         ///< energies, gradients, Hessians, line search
     double seconds_solve = 0;            ///< factorisation + back substitution
+    /// Contact detection: body contact queries (BVH), self-contact candidates (spatial
+    /// hash) and the penetration-safe step bounds.
+    double seconds_contact = 0;
     double seconds_total = 0;
 
     bool usable() const {
