@@ -590,6 +590,29 @@ double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& p
     return total;
 }
 
+std::vector<PairFrame> SelfContact::contact_frames(const Eigen::MatrixX3d& q, double thickness_m) const {
+    require(q.rows() == vertex_count_, "SelfContact::contact_frames: positions have ", q.rows(),
+            " rows, expected ", vertex_count_);
+    const double h2 = thickness_m * thickness_m;
+    std::vector<PairFrame> frames;
+    for (const ContactPair& pair : candidates_) {
+        const Mat34 x = gather(q, pair);
+        if (box_gap_squared(pair.kind, x) >= h2) continue;
+        DistanceRegime regime;
+        const double d2 = pair_distance_squared(pair.kind, x, &regime);
+        if (!(d2 < h2 && d2 > 0)) continue;
+        PairFrame f;
+        f.pair = pair;
+        f.weights = regime_weights(regime, x);
+        const Eigen::Vector3d r = x * f.weights;
+        if (!(r.norm() > 0)) continue;
+        f.normal = r.normalized();
+        f.distance_m = std::sqrt(d2);
+        frames.push_back(f);
+    }
+    return frames;
+}
+
 double SelfContact::covered_radius(const Eigen::MatrixX3d& q) const {
     if (radius_ <= 0 || q.rows() != reference_.rows()) return 0.0;
     const double moved = q.rows() > 0 ? (q - reference_).rowwise().norm().maxCoeff() : 0.0;

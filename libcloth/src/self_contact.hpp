@@ -89,6 +89,16 @@ struct PairHessian {
     Matrix12d hessian;
 };
 
+/// The frame of a pair in contact, for lagged friction: relative displacement of the two
+/// closest points = Σ_c weights_c Δx_{v[c]}; unit normal from the second primitive's closest
+/// point to the first's; distance d.
+struct PairFrame {
+    ContactPair pair;
+    Eigen::Vector4d weights = Eigen::Vector4d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    double distance_m = 0;
+};
+
 /// Self-contact of one cloth mesh. Topology (edges, exclusions) is fixed at construction;
 /// positions are arguments. Not thread-safe for concurrent find_candidates calls.
 class SelfContact {
@@ -114,6 +124,9 @@ public:
     /// at least 0; 0 before the first call or on a row-count mismatch. The candidates may be
     /// reused at q while this is at least the radius the caller needs.
     double covered_radius(const Eigen::MatrixX3d& q) const;
+    /// The candidates within `thickness_m` at q (0 < d < h), with their frames, in
+    /// candidate order.
+    std::vector<PairFrame> contact_frames(const Eigen::MatrixX3d& q, double thickness_m) const;
     const std::vector<std::array<int, 2>>& edges() const { return edges_; }
     /// The radius of the last find_candidates call (0 before the first).
     double candidate_radius() const { return radius_; }

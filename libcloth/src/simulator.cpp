@@ -87,6 +87,13 @@ struct FrictionContact {
     double normal_force = 0;  // λ
 };
 
+// Lagged friction between two cloth layers: a self-contact pair's frame and penalty force
+// at the start of the step.
+struct PairFriction {
+    internal::PairFrame frame;
+    double normal_force = 0;  // λ
+};
+
 }  // namespace
 
 bool SimulatorOptions::is_valid(std::string* why) const {
@@ -186,6 +193,7 @@ struct Simulator::Impl {
     // Per-iteration state.
     std::vector<VertexContact> contacts;  // one per free vertex
     std::vector<FrictionContact> friction;  // lagged over the step
+    std::vector<PairFriction> pair_friction;  // cloth–cloth, lagged over the step
     // Contact planes, made when a vertex first comes within the thickness during a step (at
     // its closest surface point) and kept until the step ends, so that the step's
     // incremental potential changes only when a plane is added (Newton then converges
@@ -410,6 +418,16 @@ struct Simulator::Impl {
         return alpha;
     }
 
+    // The lagged cloth–cloth friction of a time step: self-contact pairs within the thickness
+    // at its start, with their frames and penalty forces λ = k (h − d).
+    void lag_pair_friction(const Eigen::MatrixX3d& p) {
+        pair_friction.clear();
+        if (step_dt <= 0 || !options.self_contact || options.cloth_friction <= 0) return;
+        const double h = options.contact_thickness_m, k = self_contact_stiffness();
+        for (const internal::PairFrame& f : self_contact.contact_frames(p, h))
+            pair_friction.push_back({f, k * (h - f.distance_m)});
+    }
+
     double friction_epsilon() const { return options.friction_slip_speed_m_per_s * step_dt; }
 
     // ---- energy ------------------------------------------------------------------------
@@ -532,6 +550,26 @@ struct Simulator::Impl {
             internal::SelfContactParams params{options.contact_thickness_m, self_contact_stiffness()};
             e += self_contact.energy(p, params, gradient, want_h ? pair_hessians : nullptr);
         }
+        // Cloth–cloth friction: μ λ f₀ of the closest points' relative slip u = Σ w_c Δx_c
+        // (frame lagged); gradient w_c ∇f₀, Hessian (w wᵀ) ⊗ ∇²f₀ (PSD).
+        if (step_dt > 0)
+            for (const PairFriction& pf : pair_friction) {
+                const auto& v = pf.frame.pair.v;
+                const Eigen::Vector4d& w = pf.frame.weights;
+                Eigen::Vector3d u = Eigen::Vector3d::Zero();
+                for (int c = 0; c < 4; ++c) u += w(c) * (p.row(v[static_cast<std::size_t>(c)]) - step_start.row(v[static_cast<std::size_t>(c)])).transpose();
+                e += friction_energy(u, pf.frame.normal, pf.normal_force, options.cloth_friction, eps,
+                                     want_g ? &gf : nullptr, want_h ? &hf : nullptr);
+                if (want_g)
+                    for (int c = 0; c < 4; ++c) gradient->segment<3>(3 * v[static_cast<std::size_t>(c)]) += w(c) * gf;
+                if (want_h && pair_hessians) {
+                    internal::PairHessian ph;
+                    ph.pair = pf.frame.pair;
+                    for (int a = 0; a < 4; ++a)
+                        for (int b = 0; b < 4; ++b) ph.hessian.block<3, 3>(3 * a, 3 * b) = w(a) * w(b) * hf;
+                    pair_hessians->push_back(ph);
+                }
+            }
         // Air drag: c A/(2Δt) |x − x₀ − Δt w|², whose gradient is c A (v − w).
         if (step_dt > 0 && options.air_drag_n_s_per_m3 > 0) {
             for (Eigen::Index i = 0; i < p.rows(); ++i) {
@@ -659,6 +697,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             if (self_contact.covered_radius(p) < needed)
                 self_contact.find_candidates(p, needed + kCandidateMargin * h);
         }
+        if (it == 0) lag_pair_friction(p);
         const double contact_seconds = seconds_since(tc);
         s.seconds_contact += contact_seconds;
         hessian_mode = inertia_weight > 0 ? options.step_hessian : options.static_hessian;

@@ -357,3 +357,56 @@ TEST_CASE("a skirt with a stitched seam drapes on a cone-and-cylinder body", "[c
         if (radius(j) > radius(j - 1) && radius(j) > radius(j + 1)) ++maxima;
     CHECK(maxima >= 4);
 }
+
+TEST_CASE("friction between cloth layers stops a sliding layer as Coulomb's law predicts",
+          "[cloth][contact][self_contact][friction]") {
+    // A 0.14 m square dropped 0.5 mm onto a pinned 0.3 m one settles at the 5 mm thickness, then
+    // slides at 0.5 m/s along x under gravity. With μ = 0.6 it stops after v²/(2μg) ≈ 2.1 cm
+    // in v/(μg) ≈ 0.085 s; without friction it keeps its speed.
+    auto slide = [](double mu, double* speed) {
+        const int n = 4;
+        ClothMesh a = make_square_grid(n, 0.3, Eigen::Vector3d(-0.05, -0.05, 0), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+        // Turned by 0.3 rad and shifted, so that no edge lies exactly above a parallel one.
+        const double turn = 0.3;
+        ClothMesh b = make_square_grid(n, 0.14, Eigen::Vector3d(0.05, 0.02, 0.0055),
+                                       Eigen::Vector3d(std::cos(turn), std::sin(turn), 0),
+                                       Eigen::Vector3d(-std::sin(turn), std::cos(turn), 0));
+        const int na = a.vertex_count();
+        ClothMesh m;
+        m.positions.resize(2 * na, 3);
+        m.positions << a.positions, b.positions;
+        m.faces.resize(2 * a.face_count(), 3);
+        m.faces << a.faces, (b.faces.array() + na).matrix();
+        m.pattern.resize(2 * na, 2);
+        m.pattern << a.pattern, (b.pattern.rowwise() + Eigen::RowVector2d(0.3, 0)).eval();
+        m.pattern_faces = m.faces;
+        SimulatorOptions options;
+        options.cloth_friction = mu;
+        options.air_drag_n_s_per_m3 = 0;
+        Simulator sim(m, drape::test::gray_interlock_material(), options);
+        for (int i = 0; i < na; ++i) sim.pin(i);
+        for (int k = 0; k < 30; ++k) REQUIRE(sim.step().usable());  // lands and settles
+        const Eigen::MatrixX3d start = sim.positions();
+        Eigen::MatrixX3d v = Eigen::MatrixX3d::Zero(2 * na, 3);
+        v.bottomRows(na).col(0).setConstant(0.5);
+        sim.set_velocities(v);
+        for (int k = 0; k < 30; ++k) {  // 0.15 s
+            const StepSummary s = sim.step();
+            INFO(s.brief_report());
+            REQUIRE(s.usable());
+        }
+        *speed = sim.velocities().bottomRows(na).col(0).mean();
+        CHECK(sim.contact_report().self_intersections == 0);
+        CHECK(sim.positions().bottomRows(na).col(2).minCoeff() > 0);  // still above the lower layer
+        return sim.positions().bottomRows(na).col(0).mean() - start.bottomRows(na).col(0).mean();
+    };
+    double speed_free = 0, speed_friction = 0;
+    const double free = slide(0.0, &speed_free);
+    const double held = slide(0.6, &speed_friction);
+    INFO("slid " << free * 100 << " cm without friction (speed " << speed_free << " m/s), " << held * 100
+                 << " cm with mu = 0.6 (speed " << speed_friction << " m/s)");
+    CHECK(free == Approx(0.075).margin(0.005));
+    CHECK(speed_free == Approx(0.5).margin(0.02));
+    CHECK(held == Approx(0.5 * 0.5 / (2 * 0.6 * 9.8)).epsilon(0.3));
+    CHECK(std::abs(speed_friction) < 0.02);
+}
