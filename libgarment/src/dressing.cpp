@@ -4,6 +4,8 @@
 
 #include "dressing_internal.hpp"
 
+#include <drape/cloth/intersections.hpp>
+#include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
 
 #include <Eigen/SVD>
@@ -11,9 +13,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <initializer_list>
+#include <cstdint>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace drape::garment {
 
@@ -104,7 +110,327 @@ void arap(const Eigen::MatrixX3d& X0, const std::vector<std::array<int, 2>>& edg
     }
 }
 
+constexpr double kSoftM = 0.01;     // soft zone of the radial placement (AxisEnvelope::push)
+constexpr double kLayerGapM = 0.006;  // sleeve kept this far outside the torso panels
+
+bool arm_joint(int j) {
+    for (Joint a : {Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist, Joint::right_shoulder,
+                    Joint::right_elbow, Joint::right_wrist})
+        if (j == index(a)) return true;
+    return false;
+}
+
+// Whether the body part of joint j is one a panel of this role must stay outside of: a
+// forearm or hand resting on the hip (arms down) is not something pants go around, and
+// torso panels only avoid the upper arm.
+bool obstacle_for(detail::Role role, int j) {
+    if (role == detail::Role::sleeve || role == detail::Role::hint) return true;
+    if (role == detail::Role::torso)
+        return !(j == index(Joint::left_elbow) || j == index(Joint::left_wrist) ||
+                 j == index(Joint::right_elbow) || j == index(Joint::right_wrist));
+    return !arm_joint(j);
+}
+
+// Radial placement of the skinned garment outside the posed body. Torso, skirt and the
+// pants' pelvis part are moved away from the trunk axis (pelvis-spine-chest-neck), outside
+// the envelope of the trunk and leg vertices; pants legs away from their leg axis, outside
+// that leg, and kept on their side of the body's mid-plane; sleeves are then wrapped anew
+// around the posed arms (cap on the placed armhole), moved outside the arm and outside the
+// torso panels. Radial moves keep each point's angle and height about its axis, so
+// layers that do not cross do not start crossing.
+// Moves the vertices from X towards `to` one at a time, keeping a move only if it does not
+// increase the number of intersecting triangle pairs at the moved vertex (stitched
+// partners count as one vertex, as the simulator counts them); rejected moves are retried
+// at half length, twice. From a state without crossings no crossing can appear, since
+// every intermediate state is checked. Returns the number of vertices not fully moved.
+int guarded_moves(const GarmentMesh& mesh, const Eigen::MatrixX3d& to, Eigen::MatrixX3d& X) {
+    const Eigen::MatrixX3i& F = mesh.cloth.faces;
+    const int nv = int(X.rows()), nf = int(F.rows());
+    const std::vector<int> rep = detail::sewn_representatives(nv, mesh.stitches);
+    std::vector<std::vector<int>> faces_of(static_cast<size_t>(nv));
+    for (int f = 0; f < nf; ++f)
+        for (int k = 0; k < 3; ++k) faces_of[size_t(F(f, k))].push_back(f);
+    // Faces hashed by their box over both states (a face stays inside it during the pass).
+    double mean_edge = 0;
+    for (int f = 0; f < nf; ++f) mean_edge += (X.row(F(f, 0)) - X.row(F(f, 1))).norm();
+    const double cell = std::max(2.0 * mean_edge / std::max(nf, 1), 1e-3);
+    const auto cell_of = [&](const Eigen::Vector3d& p) -> Eigen::Vector3i {
+        return (p / cell).array().floor().cast<int>();
+    };
+    const auto key = [](const Eigen::Vector3i& c) {
+        return (int64_t(c.x()) * 73856093) ^ (int64_t(c.y()) * 19349663) ^ (int64_t(c.z()) * 83492791);
+    };
+    std::vector<Eigen::AlignedBox3d> box(static_cast<size_t>(nf));
+    std::unordered_map<int64_t, std::vector<int>> grid;
+    for (int f = 0; f < nf; ++f) {
+        for (int k = 0; k < 3; ++k) {
+            box[size_t(f)].extend(Eigen::Vector3d(X.row(F(f, k)).transpose()));
+            box[size_t(f)].extend(Eigen::Vector3d(to.row(F(f, k)).transpose()));
+        }
+        const Eigen::Vector3i a = cell_of(box[size_t(f)].min()), b = cell_of(box[size_t(f)].max());
+        for (int x = a.x(); x <= b.x(); ++x)
+            for (int y = a.y(); y <= b.y(); ++y)
+                for (int z = a.z(); z <= b.z(); ++z) grid[key({x, y, z})].push_back(f);
+    }
+    const auto tri = [&](int f) {
+        Eigen::Matrix3d m;
+        for (int k = 0; k < 3; ++k) m.col(k) = X.row(F(f, k)).transpose();
+        return m;
+    };
+    const auto adjacent = [&](int f, int g) {
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+                if (rep[size_t(F(f, i))] == rep[size_t(F(g, j))]) return true;
+        return false;
+    };
+    int not_moved = 0;
+    std::vector<int> near;
+    for (int v = 0; v < nv; ++v) {
+        if ((to.row(v) - X.row(v)).squaredNorm() == 0) continue;
+        near.clear();
+        for (int f : faces_of[size_t(v)]) {
+            const Eigen::Vector3i a = cell_of(box[size_t(f)].min()), b = cell_of(box[size_t(f)].max());
+            for (int x = a.x(); x <= b.x(); ++x)
+                for (int y = a.y(); y <= b.y(); ++y)
+                    for (int z = a.z(); z <= b.z(); ++z) {
+                        const auto it = grid.find(key({x, y, z}));
+                        if (it != grid.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+                    }
+        }
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        const auto crossings = [&]() {
+            int n = 0;
+            for (int f : faces_of[size_t(v)]) {
+                const Eigen::Matrix3d a = tri(f);
+                for (int g : near)
+                    if (g != f && !adjacent(f, g) && box[size_t(f)].intersects(box[size_t(g)]) &&
+                        cloth::triangles_intersect(a, tri(g)))
+                        ++n;
+            }
+            return n;
+        };
+        const int before = crossings();
+        const Eigen::RowVector3d from = X.row(v), target = to.row(v);
+        bool moved = false;
+        for (double frac : {1.0, 0.5, 0.25}) {
+            X.row(v) = from + frac * (target - from);
+            if (crossings() <= before) {
+                moved = frac == 1.0;
+                break;
+            }
+            X.row(v) = from;
+        }
+        if (!moved) ++not_moved;
+    }
+    return not_moved;
+}
+
+void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
+                        const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
+                        const Eigen::VectorXd& pelvis_weight, double clearance, Eigen::MatrixX3d& X) {
+    const auto J = [&](Joint j) -> Eigen::Vector3d { return skel.joints.row(index(j)).transpose(); };
+    const int nv = int(X.rows());
+    std::vector<detail::Role> role(pattern.panels.size());
+    for (size_t p = 0; p < pattern.panels.size(); ++p) role[p] = detail::role_of(pattern, pattern.panels[p].name);
+    const auto role_v = [&](int v) { return role[size_t(mesh.panel_of_vertex(v))]; };
+    const auto left_v = [&](int v) {
+        const BodyPart part = pattern.placements[size_t(mesh.panel_of_vertex(v))].body_part;
+        return part == BodyPart::left_leg || part == BodyPart::left_sleeve;
+    };
+    const std::vector<Eigen::Vector3d> trunk_chain = {J(Joint::pelvis), J(Joint::spine), J(Joint::chest), J(Joint::neck)};
+    detail::AxisEnvelope trunk(trunk_chain, 0.8);
+    detail::AxisEnvelope legs[2] = {detail::AxisEnvelope({J(Joint::left_hip), J(Joint::left_knee), J(Joint::left_ankle)}, 0.3),
+                                    detail::AxisEnvelope({J(Joint::right_hip), J(Joint::right_knee), J(Joint::right_ankle)}, 0.3)};
+    detail::AxisEnvelope arms[2] = {
+        detail::AxisEnvelope({J(Joint::left_shoulder), J(Joint::left_elbow), J(Joint::left_wrist)}, 0.15),
+        detail::AxisEnvelope({J(Joint::right_shoulder), J(Joint::right_elbow), J(Joint::right_wrist)}, 0.15)};
+    const auto side_of = [](int j, std::initializer_list<Joint> part) {
+        return std::any_of(part.begin(), part.end(), [j](Joint l) { return j == index(l); });
+    };
+    for (Eigen::Index b = 0; b < body_v.rows(); ++b) {
+        const int j = dominant[size_t(b)];
+        const Eigen::Vector3d x = body_v.row(b).transpose();
+        if (j != index(Joint::head) && j != index(Joint::head_top) && !arm_joint(j)) trunk.add(x);
+        if (side_of(j, {Joint::left_hip, Joint::left_knee, Joint::left_ankle, Joint::left_toe})) legs[0].add(x);
+        if (side_of(j, {Joint::right_hip, Joint::right_knee, Joint::right_ankle, Joint::right_toe})) legs[1].add(x);
+        if (side_of(j, {Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist})) arms[0].add(x);
+        if (side_of(j, {Joint::right_shoulder, Joint::right_elbow, Joint::right_wrist})) arms[1].add(x);
+    }
+    for (auto* e : {&trunk, &legs[0], &legs[1], &arms[0], &arms[1]}) e->finish();
+    // Mid-plane of the body (through the pelvis, normal to the hip axis): the two pants
+    // legs stay kMidGap on their side of it.
+    const Eigen::Vector3d mid_o = J(Joint::pelvis), mid_n = (J(Joint::left_hip) - J(Joint::right_hip)).normalized();
+    constexpr double kMidGap = 0.004;
+    bool any_sleeve = false;
+    for (int v = 0; v < nv; ++v) {
+        const detail::Role r = role_v(v);
+        any_sleeve = any_sleeve || r == detail::Role::sleeve;
+        if (r == detail::Role::sleeve || r == detail::Role::hint) continue;
+        const Eigen::Vector3d p = X.row(v).transpose();
+        Eigen::Vector3d q = trunk.push(p, clearance, kSoftM);
+        if (r == detail::Role::leg && pelvis_weight(v) < 1) {
+            const double side = left_v(v) ? 1.0 : -1.0;
+            Eigen::Vector3d ql = legs[left_v(v) ? 0 : 1].push(p, clearance, kSoftM);
+            const double sd = side * mid_n.dot(ql - mid_o);
+            ql += side * (kMidGap + detail::soft_floor(sd - kMidGap, kSoftM) - sd) * mid_n;
+            q = pelvis_weight(v) * q + (1 - pelvis_weight(v)) * ql;
+        }
+        X.row(v) = q.transpose();
+    }
+    if (!any_sleeve) return;
+    X = detail::wrap_panels(pattern, mesh, skel.joints, [](double) { return Eigen::Vector2d(0.15, 0.1); }, nullptr, &X);
+    detail::AxisEnvelope torso_cloth(trunk_chain, 0.3);
+    for (int v = 0; v < nv; ++v)
+        if (role_v(v) == detail::Role::torso) torso_cloth.add(X.row(v).transpose());
+    torso_cloth.finish();
+    for (int v = 0; v < nv; ++v) {
+        if (role_v(v) != detail::Role::sleeve) continue;
+        const Eigen::Vector3d p = arms[left_v(v) ? 0 : 1].push(X.row(v).transpose(), clearance, kSoftM);
+        X.row(v) = torso_cloth.push(p, kLayerGapM, kSoftM).transpose();
+    }
+}
+
 }  // namespace
+
+namespace detail {
+
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+    // Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions of the triangle).
+    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Eigen::Vector3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+    const Eigen::Vector3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    const double denom = 1.0 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::array<int, 2>>& stitches) {
+    std::vector<int> parent(static_cast<size_t>(vertex_count));
+    for (int i = 0; i < vertex_count; ++i) parent[size_t(i)] = i;
+    const auto find = [&](int i) {
+        while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+        return i;
+    };
+    for (const auto& s : stitches) {
+        const int a = find(s[0]), b = find(s[1]);
+        if (a != b) parent[size_t(std::max(a, b))] = std::min(a, b);
+    }
+    for (int i = 0; i < vertex_count; ++i) parent[size_t(i)] = find(i);
+    return parent;
+}
+
+std::vector<LayerPair> layer_pairs(const GarmentMesh& mesh, const Eigen::MatrixX3d& X, double radius_m,
+                                   double rest_radius_m) {
+    const Eigen::MatrixX3i& F = mesh.cloth.faces;
+    const std::vector<int> rep = sewn_representatives(int(X.rows()), mesh.stitches);
+    const double cell = std::max(radius_m, 1e-4);
+    const auto key = [&](const Eigen::Vector3d& p) {
+        const Eigen::Vector3d c = (p / cell).array().floor();
+        return (int64_t(c.x()) * 73856093) ^ (int64_t(c.y()) * 19349663) ^ (int64_t(c.z()) * 83492791);
+    };
+    // Triangles hashed into every cell their box (grown by the radius) touches.
+    std::unordered_map<int64_t, std::vector<int>> grid;
+    for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        Eigen::Vector3d lo = X.row(F(f, 0)).transpose(), hi = lo;
+        for (int k = 1; k < 3; ++k) {
+            lo = lo.cwiseMin(X.row(F(f, k)).transpose());
+            hi = hi.cwiseMax(X.row(F(f, k)).transpose());
+        }
+        const Eigen::Vector3d a = ((lo.array() - radius_m) / cell).floor(), b = ((hi.array() + radius_m) / cell).floor();
+        for (double x = a.x(); x <= b.x(); ++x)
+            for (double y = a.y(); y <= b.y(); ++y)
+                for (double z = a.z(); z <= b.z(); ++z)
+                    grid[key(Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5) * cell)].push_back(int(f));
+    }
+    const Eigen::MatrixXd& P = mesh.cloth.pattern;
+    std::vector<LayerPair> out;
+    for (Eigen::Index v = 0; v < X.rows(); ++v) {
+        const auto it = grid.find(key(X.row(v).transpose()));
+        if (it == grid.end()) continue;
+        const int pv = mesh.panel_of_vertex(v);
+        std::vector<int> faces = it->second;  // (hash collisions may list a face twice)
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        for (int f : faces) {
+            bool skip = false;
+            for (int k = 0; k < 3; ++k) skip = skip || rep[size_t(F(f, k))] == rep[size_t(v)];
+            if (skip) continue;
+            const Eigen::Vector3d p = X.row(v).transpose();
+            const Eigen::Vector3d q = closest_on_triangle(p, X.row(F(f, 0)).transpose(), X.row(F(f, 1)).transpose(),
+                                                          X.row(F(f, 2)).transpose());
+            const double d = (p - q).norm();
+            if (d >= radius_m) continue;
+            if (mesh.panel_of_vertex(F(f, 0)) == pv && mesh.panel_of_vertex(F(f, 1)) == pv &&
+                mesh.panel_of_vertex(F(f, 2)) == pv) {
+                const auto lift = [&](int i) { return Eigen::Vector3d(P(i, 0), P(i, 1), 0.0); };
+                const double rest = (lift(int(v)) - closest_on_triangle(lift(int(v)), lift(F(f, 0)), lift(F(f, 1)),
+                                                                         lift(F(f, 2))))
+                                        .norm();
+                if (rest < rest_radius_m) continue;
+            }
+            out.push_back({int(v), int(f), d, q});
+        }
+    }
+    return out;
+}
+
+}  // namespace detail
+
+std::string GarmentStateCheck::brief_report() const {
+    std::ostringstream os;
+    os << (clean() ? "clean" : "NOT clean") << ": " << self_intersections << " self-intersections, penetration "
+       << 1000 * max_penetration_m << " mm (" << vertices_inside << " vertices inside), min layer distance "
+       << 1000 * min_layer_distance_m << " mm (" << close_pairs << " close pairs), max seam gap "
+       << 1000 * max_seam_gap_m << " mm";
+    return os.str();
+}
+
+GarmentStateCheck check_garment_state(const GarmentMesh& mesh, const Eigen::MatrixX3d& positions,
+                                      const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3i& body_faces,
+                                      double layer_gap_m) {
+    const int nv = mesh.cloth.vertex_count();
+    require(positions.rows() == nv && positions.allFinite(), "check_garment_state: positions have ",
+            positions.rows(), " rows (need ", nv, ", all finite)");
+    require(mesh.panel_of_vertex.size() == nv && mesh.cloth.pattern.rows() == nv,
+            "check_garment_state: the garment mesh is inconsistent");
+    require(layer_gap_m > 0 && std::isfinite(layer_gap_m), "check_garment_state: layer_gap_m = ", layer_gap_m,
+            " must be > 0");
+    GarmentStateCheck r;
+    const std::vector<int> rep = detail::sewn_representatives(nv, mesh.stitches);
+    Eigen::MatrixX3i merged = mesh.cloth.faces;
+    for (Eigen::Index f = 0; f < merged.rows(); ++f)
+        for (int c = 0; c < 3; ++c) merged(f, c) = rep[size_t(merged(f, c))];
+    r.self_intersections = cloth::count_self_intersections(positions, merged);
+    const cloth::Obstacle body(body_vertices, body_faces);
+    for (int v = 0; v < nv; ++v) {
+        const cloth::ObstacleQuery q = body.closest(positions.row(v).transpose(), std::numeric_limits<double>::infinity());
+        if (q.found && q.signed_distance_m < 0) {
+            ++r.vertices_inside;
+            r.max_penetration_m = std::max(r.max_penetration_m, -q.signed_distance_m);
+        }
+    }
+    r.min_layer_distance_m = std::numeric_limits<double>::infinity();
+    for (const detail::LayerPair& p : detail::layer_pairs(mesh, positions, 0.02, 2 * layer_gap_m)) {
+        r.min_layer_distance_m = std::min(r.min_layer_distance_m, p.distance_m);
+        if (p.distance_m < layer_gap_m) ++r.close_pairs;
+    }
+    for (const auto& s : mesh.stitches)
+        r.max_seam_gap_m = std::max(r.max_seam_gap_m, (positions.row(s[0]) - positions.row(s[1])).norm());
+    return r;
+}
 
 bool DressingOptions::is_valid(std::string* why) const {
     auto fail = [&](const std::string& t) {
@@ -125,7 +451,9 @@ std::string DressingSummary::brief_report() const {
     os << (usable() ? "dressed" : "dressing NOT usable") << ": " << vertices_inside
        << " vertices inside the body, " << vertices_pushed << " pushed, " << iterations
        << " round(s), max seam gap " << 100 * max_seam_gap_m << " cm (" << 100 * wrapped_seam_gap_m
-       << " cm before push-out), alignment rms "
+       << " cm before push-out), " << self_intersections << " self-intersections, penetration "
+       << 1000 * max_penetration_m << " mm, min layer distance " << 1000 * min_layer_distance_m
+       << " mm, alignment rms "
        << alignment_rms_m << " m, " << seconds << " s";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
@@ -211,24 +539,25 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     const double y_lo = rest_local.col(1).minCoeff(), bin = 0.01;
     const int nbins = int(std::ceil((rest_local.col(1).maxCoeff() - y_lo) / bin)) + 1;
     std::vector<Eigen::Vector4d> box(size_t(nbins), Eigen::Vector4d(1e300, -1e300, 1e300, -1e300));
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    std::vector<int> dominant(size_t(shaped.vertices.rows()), -1);  // joint of the largest weight
+    for (Eigen::Index b = 0; b < shaped.vertices.rows(); ++b) {
+        double w = 0;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, b); it; ++it)
+            if (it.value() > w) w = it.value(), dominant[size_t(b)] = int(it.col());
+    }
     {
-        const Eigen::SparseMatrix<double, Eigen::RowMajor> Wr = model.skin_weights;
         const std::set<int> trunk = {index(Joint::pelvis), index(Joint::spine), index(Joint::chest),
                                      index(Joint::neck), index(Joint::left_clavicle),
                                      index(Joint::right_clavicle)};
         for (Eigen::Index v = 0; v < rest_local.rows(); ++v) {
-            int best = -1;
-            double w = 0;
-            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Wr, v); it; ++it)
-                if (it.value() > w) w = it.value(), best = int(it.col());
-            if (!trunk.count(best)) continue;
+            if (!trunk.count(dominant[size_t(v)])) continue;
             Eigen::Vector4d& b = box[size_t((rest_local(v, 1) - y_lo) / bin)];
             b << std::min(b[0], rest_local(v, 0)), std::max(b[1], rest_local(v, 0)),
                 std::min(b[2], rest_local(v, 2)), std::max(b[3], rest_local(v, 2));
         }
     }
-    const auto torso_section = [&](double y) {
-        const int k = std::clamp(int((y - y_lo) / bin), 0, nbins - 1);
+    const auto raw_section = [&](int k) {
         for (int d = 0; d < nbins; ++d)  // nearest filled bin
             for (int kk : {k - d, k + d})
                 if (kk >= 0 && kk < nbins && box[size_t(kk)][0] < box[size_t(kk)][1])
@@ -236,27 +565,76 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
                                            0.5 * (box[size_t(kk)][3] - box[size_t(kk)][2]));
         return Eigen::Vector2d(0.15, 0.1);
     };
-    Eigen::MatrixX3d X = detail::wrap_panels(pattern, mesh, garment_joints, torso_section);
+    // Below the pelvis joint (the crotch, where the trunk vertices thin out) the section of
+    // the pelvis holds; sections are averaged over 7 cm so the wrapping ellipses change
+    // smoothly with height (an abrupt change folds a panel).
+    const auto torso_section = [&](double y) {
+        const int k = std::clamp(int((std::max(y, 0.0) - y_lo) / bin), 0, nbins - 1);
+        Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+        for (int d = -3; d <= 3; ++d) sum += raw_section(std::clamp(k + d, 0, nbins - 1));
+        return Eigen::Vector2d(sum / 7.0);
+    };
+    Eigen::VectorXd pelvis_weight;
+    Eigen::MatrixX3d X = detail::wrap_panels(pattern, mesh, garment_joints, torso_section, &pelvis_weight);
     X = (T * X.transpose()).transpose();
 
     // 2. Linear blend skinning with the weights of the nearest rest body vertex.
     const body::PosedSkeleton skel = body::forward_kinematics(rest, pose);
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    // Each panel takes its weights from the nearest body vertex that is skinned mainly to
+    // one of the panel's joints (detail::skinning_joints), restricted to those joints.
+    std::vector<Eigen::MatrixXd> candidates(pattern.panels.size());
+    std::vector<std::vector<int>> candidate_ids(pattern.panels.size()), allowed(pattern.panels.size());
+    for (size_t p = 0; p < pattern.panels.size(); ++p) {
+        allowed[p] = detail::skinning_joints(pattern, int(p));
+        for (Eigen::Index b = 0; b < shaped.vertices.rows(); ++b)
+            if (allowed[p].empty() || std::count(allowed[p].begin(), allowed[p].end(), dominant[size_t(b)]))
+                candidate_ids[p].push_back(int(b));
+        if (candidate_ids[p].empty()) {  // (a body without such vertices: any vertex)
+            allowed[p].clear();
+            for (Eigen::Index b = 0; b < shaped.vertices.rows(); ++b) candidate_ids[p].push_back(int(b));
+        }
+        candidates[p].resize(Eigen::Index(candidate_ids[p].size()), 3);
+        for (size_t k = 0; k < candidate_ids[p].size(); ++k)
+            candidates[p].row(Eigen::Index(k)) = shaped.vertices.row(candidate_ids[p][k]);
+    }
     for (int v = 0; v < nv; ++v) {
-        const int b = nearest_vertex(shaped.vertices, X.row(v).transpose());
+        const size_t panel = size_t(mesh.panel_of_vertex(v));
+        const int b = candidate_ids[panel][size_t(nearest_vertex(candidates[panel], X.row(v).transpose()))];
         Eigen::Vector3d p = Eigen::Vector3d::Zero();
         double sum = 0;
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, b); it; ++it) {
+            if (!allowed[panel].empty() && !std::count(allowed[panel].begin(), allowed[panel].end(), int(it.col())))
+                continue;
             p += it.value() * (skel.skinning[size_t(it.col())] * Eigen::Vector3d(X.row(v).transpose()));
             sum += it.value();
         }
-        if (sum > 0) X.row(v) = (p / sum).transpose();
+        if (sum > 0) p /= sum;
+        else p = X.row(v).transpose();
+        // The pants' pelvis part moves with the pelvis alone (blended into the legs over the
+        // crotch), so the two legs do not drag the crotch across each other in a stride.
+        const double pw = pelvis_weight(v);
+        if (detail::role_of(pattern, pattern.panels[panel].name) == detail::Role::leg)
+            p = pw * (skel.skinning[size_t(index(Joint::pelvis))] * Eigen::Vector3d(X.row(v).transpose())) + (1 - pw) * p;
+        X.row(v) = p.transpose();
     }
 
-    // 3. Interpenetration removal: push offending vertices out along the body normal and
-    //    let an as-rigid-as-possible deformation carry their neighbours.
+    // 3. Radial placement outside the posed body (see place_outside_body), then the
+    //    sleeves on the posed arms around the placed torso.
     const Eigen::MatrixXd body_v = body::pose_body(model, shaped, pose).vertices;
     const Eigen::MatrixXd body_n = vertex_normals(body_v, model.faces);
+    {
+        Eigen::MatrixX3d placed = X;
+        place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, options.clearance_m, placed);
+        // Sleeves are placed anew on the posed arms (not deformed from the skinned state):
+        // they take their new places at once, the rest moves guarded.
+        for (int v = 0; v < nv; ++v)
+            if (detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve)
+                X.row(v) = placed.row(v);
+        guarded_moves(mesh, placed, X);
+    }
+
+    // 4. Interpenetration removal: push offending vertices out along the body normal and
+    //    let an as-rigid-as-possible deformation carry their neighbours.
     const MeshInsideTest inside_test(body_v, model.faces);
     // Stitched vertex pairs join the ARAP graph, so seams that wrapping closed stay closed.
     // Stitch springs (rest length zero, stiffer than cloth edges: kStitchWeight) pull seams
@@ -272,18 +650,26 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     const Eigen::MatrixX3d X0 = X;
     for (const auto& s : mesh.stitches)
         summary.wrapped_seam_gap_m = std::max(summary.wrapped_seam_gap_m, (X.row(s[0]) - X.row(s[1])).norm());
-    std::vector<bool> ever(size_t(nv), false);
+    std::vector<bool> ever(size_t(nv), false), march(size_t(nv), false);
     auto offenders = [&](std::vector<int>* ids, Eigen::MatrixX3d* targets) {
         std::vector<std::pair<int, Eigen::Vector3d>> list;
         const std::vector<bool> in = inside_test.inside(X);
         for (int v = 0; v < nv; ++v) {
             const Eigen::Vector3d x = X.row(v).transpose();
             const int b = nearest_vertex(body_v, x);
+            if (!obstacle_for(detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name),
+                              dominant[size_t(b)]))
+                continue;
             const Eigen::Vector3d p = body_v.row(b).transpose(), n = body_n.row(b).transpose();
             const double d = (x - p).dot(n);
-            if (in[size_t(v)] || d < 0.5 * options.clearance_m)
-                list.emplace_back(v, in[size_t(v)] && d > 0 ? Eigen::Vector3d(p + options.clearance_m * n)
-                                                            : Eigen::Vector3d(x + (options.clearance_m - d) * n));
+            if (in[size_t(v)] || d < 0.5 * options.clearance_m) {
+                // Inside the body but in front of the nearest surface: a fold (armpit, crotch)
+                // or another body part; the target is on the nearest surface, no marching.
+                const bool fold = in[size_t(v)] && d > 0;
+                march[size_t(v)] = !fold;
+                list.emplace_back(v, fold ? Eigen::Vector3d(p + options.clearance_m * n)
+                                          : Eigen::Vector3d(x + (options.clearance_m - d) * n));
+            }
         }
         ids->clear();
         *targets = Eigen::MatrixX3d(Eigen::Index(list.size()), 3);
@@ -299,24 +685,32 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
         summary.iterations = it + 1;
         if (ids.empty()) break;
         for (int v : ids) ever[size_t(v)] = true;
-        arap(X0, edges, edge_weight, zero_rest, ids, targets, options.constraint_weight, 2, X);
+        Eigen::MatrixX3d next = X;
+        arap(X0, edges, edge_weight, zero_rest, ids, targets, options.constraint_weight, 2, next);
+        guarded_moves(mesh, next, X);
     }
     // Whatever is still inside is projected onto its target (the hard constraint), marching
     // further along the normal where the nearest-vertex target is itself inside (folds of
     // the body such as an armpit).
     offenders(&ids, &targets);
+    Eigen::MatrixX3d projected = X;
     for (size_t k = 0; k < ids.size(); ++k) {
         Eigen::Vector3d x = targets.row(Eigen::Index(k)).transpose();
         const Eigen::Vector3d step =
             0.005 * (x - Eigen::Vector3d(X.row(ids[k]).transpose())).normalized();
-        for (int m = 0; m < 40 && inside_test.inside(x) && step.allFinite(); ++m) x += step;
-        X.row(ids[k]) = x.transpose();
+        for (int m = 0; m < 40 && march[size_t(ids[k])] && inside_test.inside(x) && step.allFinite(); ++m) x += step;
+        projected.row(ids[k]) = x.transpose();
     }
+    guarded_moves(mesh, projected, X);
     summary.vertices_pushed = int(std::count(ever.begin(), ever.end(), true));
     const std::vector<bool> in = inside_test.inside(X);
     summary.vertices_inside = int(std::count(in.begin(), in.end(), true));
     for (const auto& s : mesh.stitches)
         summary.max_seam_gap_m = std::max(summary.max_seam_gap_m, (X.row(s[0]) - X.row(s[1])).norm());
+    const GarmentStateCheck check = check_garment_state(mesh, X, body_v, model.faces);
+    summary.self_intersections = check.self_intersections;
+    summary.max_penetration_m = check.max_penetration_m;
+    summary.min_layer_distance_m = check.min_layer_distance_m;
     if (!summary.usable()) {
         summary.termination = DressingTermination::penetration_left;
         summary.message = std::to_string(summary.vertices_inside) + " garment vertices remain inside the body";

@@ -17,7 +17,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kCapBlendCm = 8.0;
 constexpr double kCrotchBlendCm = 8.0;  // pants: leg tubes -> pelvis tube above the crotch  // sleeve length over which the cap leaves the armhole
 
-enum class Role { torso, sleeve, skirt, leg, hint };
+}  // namespace
 
 Role role_of(const Pattern& pattern, const std::string& panel) {
     const std::string& g = pattern.name;
@@ -31,6 +31,8 @@ Role role_of(const Pattern& pattern, const std::string& panel) {
     }
     return Role::hint;
 }
+
+namespace {
 
 // Horizontal extent [min x, max x] of a closed outline at height y (clamped inside it).
 std::pair<double, double> slice(const std::vector<Eigen::Vector2d>& poly, double y) {
@@ -109,6 +111,37 @@ void chain_at_length(const Joints& J, const std::vector<Joint>& chain, double s,
 
 }  // namespace
 
+std::vector<int> skinning_joints(const Pattern& pattern, int panel) {
+    const Role role = role_of(pattern, pattern.panels[size_t(panel)].name);
+    const BodyPart part = pattern.placements[size_t(panel)].body_part;
+    std::vector<Joint> js;
+    switch (role) {
+        case Role::torso:
+            js = {Joint::pelvis, Joint::spine, Joint::chest, Joint::neck, Joint::left_clavicle, Joint::right_clavicle};
+            break;
+        case Role::skirt:
+            js = {Joint::pelvis, Joint::spine};
+            break;
+        case Role::leg:
+            js = part == BodyPart::left_leg
+                     ? std::vector<Joint>{Joint::pelvis, Joint::spine, Joint::left_hip, Joint::left_knee,
+                                          Joint::left_ankle, Joint::left_toe}
+                     : std::vector<Joint>{Joint::pelvis, Joint::spine, Joint::right_hip, Joint::right_knee,
+                                          Joint::right_ankle, Joint::right_toe};
+            break;
+        case Role::sleeve:
+            js = part == BodyPart::left_sleeve
+                     ? std::vector<Joint>{Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist}
+                     : std::vector<Joint>{Joint::right_shoulder, Joint::right_elbow, Joint::right_wrist};
+            break;
+        case Role::hint:
+            break;
+    }
+    std::vector<int> out;
+    for (Joint j : js) out.push_back(index(j));
+    return out;
+}
+
 std::vector<std::array<int, 2>> mesh_edges(const Eigen::MatrixX3i& faces) {
     std::set<std::array<int, 2>> set;
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
@@ -119,10 +152,91 @@ std::vector<std::array<int, 2>> mesh_edges(const Eigen::MatrixX3i& faces) {
     return {set.begin(), set.end()};
 }
 
+namespace {
+constexpr int kAngleBins = 72;
+constexpr double kAxisBinM = 0.01;
+}  // namespace
+
+AxisEnvelope::AxisEnvelope(std::vector<Eigen::Vector3d> chain, double extend_m) : chain_(std::move(chain)) {
+    if (chain_.empty()) chain_.push_back(Eigen::Vector3d::Zero());
+    if (chain_.size() < 2) chain_.push_back(Eigen::Vector3d(chain_.back() + Eigen::Vector3d::UnitY()));
+    const Eigen::Vector3d d0 = (chain_[1] - chain_[0]).normalized();
+    const Eigen::Vector3d d1 = (chain_.back() - chain_[chain_.size() - 2]).normalized();
+    chain_.front() -= extend_m * d0;
+    chain_.back() += extend_m * d1;
+    length_.push_back(0);
+    for (size_t i = 1; i < chain_.size(); ++i) length_.push_back(length_.back() + (chain_[i] - chain_[i - 1]).norm());
+    s_bins_ = int(std::ceil(length_.back() / kAxisBinM)) + 1;
+    r_.assign(size_t(s_bins_) * kAngleBins, -1.0);
+}
+
+AxisEnvelope::Coords AxisEnvelope::coords(const Eigen::Vector3d& p) const {
+    Coords c;
+    double best = 1e300, s = 0;
+    Eigen::Vector3d dir = Eigen::Vector3d::UnitY();
+    for (size_t i = 0; i + 1 < chain_.size(); ++i) {
+        const Eigen::Vector3d a = chain_[i], ab = chain_[i + 1] - a;
+        const double t = std::clamp((p - a).dot(ab) / std::max(1e-18, ab.squaredNorm()), 0.0, 1.0);
+        const Eigen::Vector3d f = a + t * ab;
+        const double d = (p - f).squaredNorm();
+        if (d < best) best = d, c.foot = f, s = length_[i] + t * ab.norm(), dir = ab.normalized();
+    }
+    Eigen::Vector3d ref = Eigen::Vector3d::UnitZ() - dir.z() * dir;
+    if (ref.norm() < 1e-6) ref = Eigen::Vector3d::UnitX() - dir.x() * dir;
+    ref.normalize();
+    const Eigen::Vector3d side = dir.cross(ref);
+    const Eigen::Vector3d rv = p - c.foot;
+    c.r = rv.norm();
+    c.radial = c.r > 1e-12 ? Eigen::Vector3d(rv / c.r) : ref;
+    const double theta = std::atan2(rv.dot(side), rv.dot(ref));
+    c.s_bin = std::clamp(int(s / kAxisBinM), 0, s_bins_ - 1);
+    c.a_bin = (int(std::floor((theta + kPi) / (2 * kPi) * kAngleBins)) % kAngleBins + kAngleBins) % kAngleBins;
+    return c;
+}
+
+void AxisEnvelope::add(const Eigen::Vector3d& p) {
+    const Coords c = coords(p);
+    double& r = r_[size_t(c.s_bin) * kAngleBins + size_t(c.a_bin)];
+    r = std::max(r, c.r);
+}
+
+void AxisEnvelope::finish(int dilate) {
+    std::vector<double> out = r_;
+    for (int s = 0; s < s_bins_; ++s)
+        for (int a = 0; a < kAngleBins; ++a) {
+            double m = -1;
+            for (int ds = -dilate; ds <= dilate; ++ds)
+                for (int da = -dilate; da <= dilate; ++da) {
+                    const int ss = s + ds;
+                    if (ss < 0 || ss >= s_bins_) continue;
+                    m = std::max(m, r_[size_t(ss) * kAngleBins + size_t((a + da + kAngleBins) % kAngleBins)]);
+                }
+            out[size_t(s) * kAngleBins + size_t(a)] = m;
+        }
+    r_ = std::move(out);
+}
+
+Eigen::Vector3d AxisEnvelope::push(const Eigen::Vector3d& p, double clearance_m, double soft_m) const {
+    const Coords c = coords(p);
+    const double R = r_[size_t(c.s_bin) * kAngleBins + size_t(c.a_bin)];
+    if (R < 0) return p;
+    const double d = c.r - (R + clearance_m);
+    if (d >= soft_m) return p;
+    return c.foot + (R + clearance_m + soft_floor(d, soft_m)) * c.radial;
+}
+
+double soft_floor(double d, double soft) {
+    // C1 continuation of the identity below `soft`: soft e^{(d - soft)/soft}, > 0, increasing.
+    return d >= soft ? d : soft * std::exp((d - soft) / soft);
+}
+
 Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, const Joints& J,
-                             const std::function<Eigen::Vector2d(double)>& torso_section) {
+                             const std::function<Eigen::Vector2d(double)>& torso_section,
+                             Eigen::VectorXd* pelvis_weight, const Eigen::MatrixX3d* base) {
     const int nv = mesh.cloth.vertex_count();
     Eigen::MatrixX3d out(nv, 3);
+    if (base) out = *base;
+    if (pelvis_weight) *pelvis_weight = Eigen::VectorXd::Ones(nv);
     const double neck_y = J(index(Joint::neck), 1), waist_y = J(index(Joint::spine), 1);
     // Heights at which the templates hang: tops from the neck, skirts and pants from the waist
     // (a dress's skirt from the bodice hem).
@@ -145,27 +259,29 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
     }
     const std::vector<Joint> torso = {Joint::pelvis, Joint::spine, Joint::chest, Joint::neck};
     const double crotch_y = waist_y + 0.01 * (pants_inseam_cm - pants_waist_cm);
-    // The wrapped front armhole of each side: (fraction from underarm to shoulder tip,
-    // position), from the front torso panel's edge 2 (left, +x) or 6 (right).
-    int front_torso = -1;
+    // The wrapped armholes of each side: (fraction from underarm to shoulder tip, position),
+    // from the front torso panel's edge 2 (left, +x) or 6 (right) and the back panel's edge
+    // 6 (left: the back is turned, its -x side is the body's left) or 2 (right).
+    int torso_panel[2] = {-1, -1};  // front, back
     for (size_t p = 0; p < pattern.panels.size(); ++p)
-        if (role_of(pattern, pattern.panels[p].name) == Role::torso &&
-            pattern.placements[p].body_part == BodyPart::front_torso)
-            front_torso = int(p);
-    std::vector<std::pair<double, Eigen::Vector3d>> slits[2];
-    const auto armhole_slit = [&](bool left) -> const std::vector<std::pair<double, Eigen::Vector3d>>& {
-        auto& slit = slits[left ? 0 : 1];
-        if (!slit.empty() || front_torso < 0) return slit;
-        const int edge = left ? 2 : 6;
-        const int n_edges = int(pattern.panels[size_t(front_torso)].edges.size());
+        if (role_of(pattern, pattern.panels[p].name) == Role::torso)
+            torso_panel[pattern.placements[p].body_part == BodyPart::back_torso ? 1 : 0] = int(p);
+    std::vector<std::pair<double, Eigen::Vector3d>> slits[2][2];
+    const auto armhole_slit = [&](bool left, bool back_half) -> const std::vector<std::pair<double, Eigen::Vector3d>>& {
+        auto& slit = slits[left ? 0 : 1][back_half ? 1 : 0];
+        const int panel = torso_panel[back_half ? 1 : 0];
+        if (!slit.empty() || panel < 0) return slit;
+        const bool plus_x = left != back_half;  // the panel's +x armhole (edge 2)
+        const int edge = plus_x ? 2 : 6;
+        const int n_edges = int(pattern.panels[size_t(panel)].edges.size());
         if (n_edges != 8) return slit;
         for (int v = 0; v < nv; ++v) {
-            if (mesh.panel_of_vertex(v) != front_torso) continue;
+            if (mesh.panel_of_vertex(v) != panel) continue;
             double f = -1;
             if (mesh.boundary_edge(v) == edge) f = mesh.boundary_fraction(v);
             if (mesh.boundary_edge(v) == edge + 1 && mesh.boundary_fraction(v) == 0.0) f = 1.0;
             if (f < 0) continue;
-            slit.emplace_back(left ? f : 1.0 - f, out.row(v).transpose());
+            slit.emplace_back(plus_x ? f : 1.0 - f, out.row(v).transpose());
         }
         std::sort(slit.begin(), slit.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         return slit;
@@ -175,6 +291,7 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
         const Panel& panel = pattern.panels[p];
         const PanelPlacement& place = pattern.placements[p];
         const Role role = role_of(pattern, panel.name);
+        if (base && role != Role::sleeve) continue;
         std::vector<Eigen::Vector2d> poly = panel.outline(0.5);
         const double top = top_of(panel);
         // Skirt panels are sliced in polar coordinates about their waist-arc centre
@@ -221,10 +338,11 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                 const double theta = 2 * kPi * t, r = 0.01 * width / (2 * kPi);
                 const double side = left ? -1.0 : 1.0;  // +x of a left sleeve runs to the back
                 const Eigen::Vector3d tube = c + r * (std::cos(theta) * up + side * std::sin(theta) * front);
-                // Near the cap the sleeve lies on the front armhole (already wrapped: torso
-                // panels come first): cap middle at the shoulder tip, cap ends at the
-                // underarm; it blends into the arm tube over kCapBlendCm.
-                const auto& slit = armhole_slit(left);
+                // Near the cap the sleeve lies on the armhole (already wrapped: torso panels
+                // come first), its front half on the front armhole and its back half on the
+                // back one (+x of a left sleeve runs to the back): cap middle at the shoulder
+                // tip, cap ends at the underarm; it blends into the arm tube over kCapBlendCm.
+                const auto& slit = armhole_slit(left, left ? t > 0 : t < 0);
                 const double blend = std::clamp((top - q.y()) / std::min(kCapBlendCm, 0.5 * top), 0.0, 1.0);
                 if (blend >= 1.0 || slit.size() < 2) {
                     out.row(v) = tube.transpose();
@@ -272,6 +390,7 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                 // a quarter each (side seam at -+X, centre front/back on the middle line);
                 // the leg tubes blend into it over kCrotchBlendCm.
                 const double w = std::clamp((y - crotch_y) / (0.01 * kCrotchBlendCm), 0.0, 1.0);
+                if (pelvis_weight) (*pelvis_weight)(v) = 0;
                 if (w > 0) {
                     const Eigen::Vector2d c = chain_at_height(J, torso, y);
                     const Eigen::Vector2d sec = torso_section(y).cwiseMax(0.02);
@@ -281,6 +400,7 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                     const Eigen::Vector3d pelvis(c.x() + sx * s_ * sec.x() * std::sin(phi), y,
                                                  c.y() + sx * s_ * sec.y() * std::cos(phi));
                     const double ws = w * w * (3 - 2 * w);
+                    if (pelvis_weight) (*pelvis_weight)(v) = ws;
                     out.row(v) = ((1 - ws) * out.row(v).transpose() + ws * pelvis).transpose();
                 }
             }

@@ -36,10 +36,44 @@ struct DressingSummary {
     int vertices_inside = 0;      ///< after registration (inside test on the posed body)
     double max_seam_gap_m = 0;    ///< largest distance between stitched vertices
     double wrapped_seam_gap_m = 0;  ///< the same after wrapping and skinning, before push-out
+    int self_intersections = 0;   ///< dressed state, as check_garment_state counts them
+    double max_penetration_m = 0; ///< dressed state: deepest vertex inside the posed body
+    double min_layer_distance_m = 0;  ///< dressed state: see GarmentStateCheck
     double seconds = 0;
     bool usable() const { return vertices_inside == 0; }
     std::string brief_report() const;
 };
+
+/// Geometric checks of a garment state on a body: what the simulator's contact report
+/// measures, plus how close the garment's layers are (a state to start a simulation from
+/// should have no self-intersection, no penetration and layers at least the contact
+/// thickness apart, else penalty self-contact locks the crossings in).
+struct GarmentStateCheck {
+    /// Intersecting triangle pairs that share no vertex, stitched partners counted as one
+    /// vertex (as cloth::Simulator::contact_report counts them).
+    int self_intersections = 0;
+    double max_penetration_m = 0;  ///< deepest garment vertex inside the body (>= 0)
+    int vertices_inside = 0;       ///< vertices with a negative signed distance to the body
+    /// Smallest distance from a vertex to a triangle it may touch in simulation: not its own
+    /// or a stitched partner's triangle, nor a triangle of its own panel within
+    /// 2 x layer_gap_m in pattern space (the simulator's rest-neighbour filter). Infinity if
+    /// none lies within 2 cm.
+    double min_layer_distance_m = 0;
+    int close_pairs = 0;           ///< such vertex–triangle pairs closer than layer_gap_m
+    double max_seam_gap_m = 0;     ///< largest distance between stitched vertices
+    /// No self-intersection, nothing deeper than `penetration_m` and no close pair.
+    bool clean(double penetration_m = 0.001) const {
+        return self_intersections == 0 && max_penetration_m <= penetration_m && close_pairs == 0;
+    }
+    std::string brief_report() const;
+};
+
+/// Checks `positions` (#V x 3, world, metres) of `mesh` against the body mesh.
+/// \param layer_gap_m the contact thickness the state should keep between layers, > 0.
+/// 	hrow drape::InvalidInput on size mismatches or non-finite positions.
+GarmentStateCheck check_garment_state(const GarmentMesh& mesh, const Eigen::MatrixX3d& positions,
+                                      const Eigen::MatrixX3d& body_vertices,
+                                      const Eigen::MatrixX3i& body_faces, double layer_gap_m = 0.005);
 
 /// The garment skeleton Q_c: the body joints a pattern's panels wrap around (torso chain
 /// for torso panels, a leg chain per leg panel, an arm chain per sleeve).
