@@ -109,6 +109,9 @@ bool SimulatorOptions::is_valid(std::string* why) const {
         return fail(detail::concat("relative_tolerance = ", relative_tolerance, " must be > 0"));
     if (!(std::isfinite(step_relative_tolerance) && step_relative_tolerance > 0))
         return fail(detail::concat("step_relative_tolerance = ", step_relative_tolerance, " must be > 0"));
+    if (!(std::isfinite(step_displacement_tolerance_m) && step_displacement_tolerance_m >= 0))
+        return fail(detail::concat("step_displacement_tolerance_m = ", step_displacement_tolerance_m,
+                                   " must be >= 0"));
     if (max_newton_iterations < 1)
         return fail(detail::concat("max_newton_iterations = ", max_newton_iterations, " must be >= 1"));
     if (max_step_halvings < 0 || max_step_halvings > 20)
@@ -836,6 +839,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             s.message = "no positive-definite regularisation of the Hessian found";
             break;
         }
+        const bool unregularised = shift == 0 && hessian_mode == HessianMode::exact;
         shift /= 10;  // let it decay once things are well conditioned
         if (shift < 1e-14) shift = 0;
 
@@ -852,7 +856,8 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         if (use_self) alpha = std::min(alpha, self_contact.max_safe_step(p, dx * alpha, 0.9) * alpha);
         s.seconds_contact += seconds_since(tc);
         const double slope = -step.dot(rhs);
-        bool accepted = false;
+        const bool pure_newton = alpha >= 1 && unregularised;
+        bool accepted = false, full_step = false;
         t0 = Clock::now();
         for (int k = 0; k <= options.max_line_search_halvings; ++k, alpha /= 2) {
             const Eigen::MatrixX3d trial = p + alpha * dx;
@@ -861,6 +866,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                 p = trial;
                 last_move = alpha * dx.rowwise().norm().maxCoeff();
                 accepted = true;
+                full_step = pure_newton && k == 0;
                 break;
             }
         }
@@ -868,6 +874,11 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         if (!accepted) {
             s.termination = StepTermination::line_search_failed;
             s.message = "no energy decrease along the Newton direction";
+            break;
+        }
+        if (inertia_weight > 0 && full_step && last_move <= options.step_displacement_tolerance_m) {
+            s.newton_iterations = it + 1;
+            s.termination = StepTermination::converged;
             break;
         }
     }

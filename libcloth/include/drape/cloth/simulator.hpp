@@ -37,6 +37,11 @@ struct SimulatorOptions {
     /// Newton tolerance of dynamic steps (same meaning as relative_tolerance, which the
     /// static solve uses): a time step need not be solved to machine precision.
     double step_relative_tolerance = 1e-2;
+    /// A time step also ends when a full, unregularised Newton step (exact Hessian, no
+    /// shift, not shortened by the line search or a contact bound) moves no vertex farther
+    /// than this (m): Newton converges quadratically there, so the remaining error is of
+    /// the order of its square. 0 disables it.
+    double step_displacement_tolerance_m = 1e-5;
     /// Newton matrix of the elastic terms in time steps. `exact`: with the inertia term the
     /// system is almost always positive definite and Newton converges quadratically; when
     /// the factorisation finds it indefinite, that iteration falls back to projected_psd.
