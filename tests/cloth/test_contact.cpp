@@ -202,20 +202,33 @@ TEST_CASE("a cloth square dropped on a sphere rests on it, outside, without cros
     CHECK(sim.positions().row(scene.centre_vertex).head<2>().norm() < 0.01);
 }
 
+namespace {
+
+// Two cloth pieces in one mesh: b's vertices follow a's, and b's pattern is laid 0.1 m to
+// the right of a's so the pieces do not overlap in the pattern plane.
+ClothMesh two_pieces(const ClothMesh& a, const ClothMesh& b) {
+    const int na = a.vertex_count(), nb = b.vertex_count();
+    ClothMesh m;
+    m.positions.resize(na + nb, 3);
+    m.positions << a.positions, b.positions;
+    m.faces.resize(a.face_count() + b.face_count(), 3);
+    m.faces << a.faces, (b.faces.array() + na).matrix();
+    const double shift = a.pattern.col(0).maxCoeff() + 0.1 - b.pattern.col(0).minCoeff();
+    m.pattern.resize(na + nb, 2);
+    m.pattern << a.pattern, (b.pattern.rowwise() + Eigen::RowVector2d(shift, 0)).eval();
+    m.pattern_faces = m.faces;
+    return m;
+}
+
+}  // namespace
+
 TEST_CASE("an open seam is pulled closed and then held", "[cloth][contact][seam]") {
     // Two 0.2 m squares side by side with a 4 cm gap, stitched along the facing edges.
     const int n = 8;
     ClothMesh a = make_square_grid(n, 0.2, Eigen::Vector3d(-0.22, 0, 0), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
     ClothMesh b = make_square_grid(n, 0.2, Eigen::Vector3d(0.02, 0, 0), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
     const int na = a.vertex_count();
-    ClothMesh m;
-    m.positions.resize(2 * na, 3);
-    m.positions << a.positions, b.positions;
-    m.faces.resize(2 * a.face_count(), 3);
-    m.faces << a.faces, (b.faces.array() + na).matrix();
-    m.pattern.resize(2 * na, 2);
-    m.pattern << a.pattern, (b.pattern.rowwise() + Eigen::RowVector2d(0.3, 0)).eval();
-    m.pattern_faces = m.faces;
+    const ClothMesh m = two_pieces(a, b);
     SimulatorOptions options;
     options.gravity_m_per_s2.setZero();
     options.air_drag_n_s_per_m3 = 0.5;
@@ -372,14 +385,7 @@ TEST_CASE("friction between cloth layers stops a sliding layer as Coulomb's law 
                                        Eigen::Vector3d(std::cos(turn), std::sin(turn), 0),
                                        Eigen::Vector3d(-std::sin(turn), std::cos(turn), 0));
         const int na = a.vertex_count();
-        ClothMesh m;
-        m.positions.resize(2 * na, 3);
-        m.positions << a.positions, b.positions;
-        m.faces.resize(2 * a.face_count(), 3);
-        m.faces << a.faces, (b.faces.array() + na).matrix();
-        m.pattern.resize(2 * na, 2);
-        m.pattern << a.pattern, (b.pattern.rowwise() + Eigen::RowVector2d(0.3, 0)).eval();
-        m.pattern_faces = m.faces;
+        const ClothMesh m = two_pieces(a, b);
         SimulatorOptions options;
         options.cloth_friction = mu;
         options.air_drag_n_s_per_m3 = 0;
