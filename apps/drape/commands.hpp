@@ -35,6 +35,10 @@ void add_pattern_command(CLI::App& app);
 /// `drape dress --garment G --sizing G.json|auto --material NAME|PATH [--body P.json] [--pose NAME] --out DIR`
 void add_dress_command(CLI::App& app);
 
+/// `drape eval-dress [--garments LIST] [--poses LIST] [--edge CM] --out DIR` (templates x five
+/// ANSUR bodies x poses: table.md, results.json, renders)
+void add_eval_dress_command(CLI::App& app);
+
 /// `drape synth --seed N [--garment G] [--pose a|b|c|random] [--material NAME|random] --out DIR`
 /// or `drape synth --suite SUITE.json --out DIR` (synthetic ground-truth scenes)
 void add_synth_command(CLI::App& app);

@@ -1,6 +1,8 @@
 // drape dress --garment skirt|pants|tshirt|dress --sizing G.json|auto --material NAME|PATH
 //             [--materials DIR] [--body P.json] [--pose NAME|POSE.json] [--edge CM]
 //             [--no-render] --out DIR
+// drape eval-dress [--garments LIST] [--poses LIST] [--edge CM] [--material NAME|PATH]
+//             [--materials DIR] --out DIR   (the templates x bodies x poses table)
 #include "body_json.hpp"
 #include "commands.hpp"
 #include "garment_json.hpp"
@@ -25,7 +27,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <iomanip>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -113,7 +117,7 @@ void write_garment_glb(const fs::path& path, const garment::GarmentMesh& m, cons
 
 /// Body and garment from the front-left, on a floor, studio light.
 void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,
-                  const garment::GarmentMesh& m, const Eigen::MatrixX3d& X) {
+                  const garment::GarmentMesh& m, const Eigen::MatrixX3d& X, int width = 600, int height = 900) {
     render::Scene scene;
     render::Mesh b;
     b.name = "body";
@@ -134,7 +138,6 @@ void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Ei
     scene.floor.height_m = std::min(body_V.col(1).minCoeff(), X.col(1).minCoeff());
     const Eigen::Vector3d lo = body_V.colwise().minCoeff(), hi = body_V.colwise().maxCoeff();
     const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    const int width = 600, height = 900;
     const double focal = 0.5 * height / std::tan(15.0 * 3.14159265358979323846 / 180.0);  // 30° vertical view
     const double dist = 1.15 * (hi.y() - lo.y()) * focal / height;
     const Eigen::Vector3d eye = centre + dist * Eigen::Vector3d(0.35, 0.05, 1.0).normalized();
@@ -182,11 +185,7 @@ void run_dress(const DressArgs& args) {
     const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, mesh);
     if (!meshed.usable()) throw std::runtime_error("drape dress: meshing failed: " + meshed.brief_report());
     std::cerr << "drape dress: " << meshed.brief_report() << "\n";
-    Eigen::MatrixX3d X0, X;
-    const garment::DressingSummary dressed =
-        garment::dress_garment(pattern, mesh, model, shaped, pose, garment::DressingOptions{}, X0);
-    std::cerr << "drape dress: " << dressed.brief_report() << "\n";
-
+    Eigen::MatrixX3d X;
     garment::DrapeOptions options;
     options.on_progress = [](const garment::DrapeProgress& p) {
         if (p.step % 50 == 0)
@@ -194,8 +193,11 @@ void run_dress(const DressArgs& args) {
                       << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
         return true;
     };
-    const garment::DrapeSummary draped =
-        garment::drape_garment(mesh, X0, posed.vertices, model.faces, material, options, X);
+    // Dressed in the rest A-pose, sewn, then moved to the pose (garment::dress_and_drape).
+    garment::DressingSummary dressed;
+    const garment::DrapeSummary draped = garment::dress_and_drape(
+        pattern, mesh, model, shaped, pose, material, garment::DressingOptions{}, options, X, &dressed);
+    std::cerr << "drape dress: " << dressed.brief_report() << "\n";
     std::cout << "drape dress: " << pattern.name << ", " << draped.brief_report() << "\n";
 
     write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
@@ -218,6 +220,7 @@ void run_dress(const DressArgs& args) {
                                    {"usable", draped.usable()},
                                    {"steps", draped.steps},
                                    {"steps_to_close_seams", draped.steps_to_close_seams},
+                                   {"welded", draped.welded},
                                    {"dressing", dressed.brief_report()},
                                    {"message", draped.message},
                                    {"seconds_dress", dressed.seconds},
@@ -228,6 +231,133 @@ void run_dress(const DressArgs& args) {
 }
 
 }  // namespace
+
+struct EvalDressArgs {
+    std::vector<std::string> garments = {"skirt", "pants", "tshirt", "dress"};
+    std::vector<std::string> poses = {"a_pose", "arms_down", "walking"};
+    std::string material = "gray-interlock";
+    std::string materials_dir;
+    double edge_cm = 4.0;
+    std::string out;
+};
+
+/// The evaluation bodies: 5th percentile, median and 95th percentile of stature and of body
+/// mass of the ANSUR II women (1,986 records) and the 5th and 95th of the men (4,082), the
+/// other measurements completed by the shape prior.
+struct EvalBody {
+    const char* name;
+    body::Gender gender;
+    double height_m;
+    double weight_kg;
+};
+constexpr EvalBody kEvalBodies[] = {{"female_p5", body::Gender::female, 1.525, 51.3},
+                                    {"female_p50", body::Gender::female, 1.626, 66.8},
+                                    {"female_p95", body::Gender::female, 1.740, 87.0},
+                                    {"male_p5", body::Gender::male, 1.648, 64.4},
+                                    {"male_p95", body::Gender::male, 1.870, 110.6}};
+
+void run_eval_dress(const EvalDressArgs& args) {
+    require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    std::vector<GarmentType> types;
+    for (const std::string& g : args.garments) types.push_back(garment_type_from_name(g));
+    std::vector<body::Pose> poses;
+    for (const std::string& p : args.poses) poses.push_back(resolve_pose(p));
+    std::string material_source;
+    const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
+    const fs::path dir(args.out);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw IoError("cannot create output folder '" + args.out + "': " + ec.message());
+
+    const body::BodyModel& model = body::BodyModel::default_model();
+    nlohmann::json cases = nlohmann::json::array();
+    std::ostringstream table;
+    table << "| garment | body | pose | vertices | seam gap mm | penetration mm | self-int. | converged | usable | steps | s |\n"
+          << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    int usable = 0, total = 0;
+    double seconds_sum = 0;
+    for (const EvalBody& eb : kEvalBodies) {
+        body::SemanticRequest request;
+        request.gender = eb.gender;
+        request[body::Semantic::height_m] = eb.height_m;
+        request[body::Semantic::weight_kg] = eb.weight_kg;
+        body::ShapedBody shaped;
+        const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
+        if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping " + std::string(eb.name) + " failed: " + shape.brief_report());
+        for (size_t t = 0; t < types.size(); ++t) {
+            const GarmentSizing sizing = proposed_sizing(types[t], shape.measured);
+            const garment::Pattern pattern = make_pattern(sizing);
+            garment::MeshOptions mesh_options;
+            mesh_options.target_edge_cm = args.edge_cm;
+            garment::GarmentMesh mesh;
+            const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, mesh);
+            if (!meshed.usable()) throw std::runtime_error("drape eval-dress: meshing failed: " + meshed.brief_report());
+            for (size_t k = 0; k < poses.size(); ++k) {
+                Eigen::MatrixX3d X;
+                garment::DressingSummary dressed;
+                const garment::DrapeSummary d = garment::dress_and_drape(pattern, mesh, model, shaped, poses[k], material,
+                                                                         garment::DressingOptions{}, garment::DrapeOptions{},
+                                                                         X, &dressed);
+                const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, poses[k]).vertices;
+                // Independent of the simulator's own report: the checks of the dressed state.
+                const garment::GarmentStateCheck c = garment::check_garment_state(mesh, X, body_V, model.faces);
+                const bool ok = d.usable() && c.max_penetration_m <= 1e-3 && c.self_intersections == 0 &&
+                                c.max_seam_gap_m < 1e-3;
+                usable += ok ? 1 : 0;
+                ++total;
+                seconds_sum += d.seconds + dressed.seconds;
+                std::cout << "drape eval-dress: " << args.garments[t] << " / " << eb.name << " / " << args.poses[k]
+                          << ": " << (ok ? "usable" : "NOT usable") << ", " << d.brief_report() << std::endl;
+                table << "| " << args.garments[t] << " | " << eb.name << " | " << args.poses[k] << " | " << d.vertices
+                      << " | " << std::fixed << std::setprecision(2) << 1000 * c.max_seam_gap_m << " | "
+                      << 1000 * c.max_penetration_m << " | " << c.self_intersections << " | "
+                      << (d.converged ? "yes" : "no") << " | " << (ok ? "**yes**" : "no") << " | " << d.steps << " | "
+                      << std::setprecision(1) << d.seconds + dressed.seconds << " |\n";
+                table.unsetf(std::ios::floatfield);
+                cases.push_back({{"garment", args.garments[t]},
+                                 {"body", eb.name},
+                                 {"pose", args.poses[k]},
+                                 {"sizing", to_json(sizing)},
+                                 {"vertices", d.vertices},
+                                 {"seam_gap_max_m", c.max_seam_gap_m},
+                                 {"penetration_max_m", c.max_penetration_m},
+                                 {"self_intersections", c.self_intersections},
+                                 {"converged", d.converged},
+                                 {"usable", ok},
+                                 {"steps", d.steps},
+                                 {"dressing", dressed.brief_report()},
+                                 {"drape", d.brief_report()},
+                                 {"seconds", d.seconds + dressed.seconds}});
+                // One render per template and pose, on the median woman.
+                if (std::string(eb.name) == "female_p50")
+                    write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V, model.faces, mesh, X,
+                                 300, 450);
+            }
+        }
+    }
+    table << "\n" << usable << " of " << total << " cases usable; " << std::fixed << std::setprecision(1)
+          << seconds_sum / std::max(total, 1) << " s per case on average (dress + drape).\n";
+    write_text_atomically(dir / "table.md", table.str());
+    write_json_file(dir / "results.json", {{"edge_cm", args.edge_cm},
+                                           {"material", material_source},
+                                           {"usable", usable},
+                                           {"cases", cases}});
+    std::cout << table.str();
+}
+
+void add_eval_dress_command(CLI::App& app) {
+    auto args = std::make_shared<EvalDressArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "eval-dress", "Dress and drape every template on five ANSUR bodies in three poses; writes table.md, "
+                      "results.json and one render per template and pose (the median woman)");
+    cmd->add_option("--garments", args->garments, "templates (default: skirt pants tshirt dress)");
+    cmd->add_option("--poses", args->poses, "poses (default: a_pose arms_down walking)");
+    cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 4)");
+    cmd->add_option("--material", args->material, "fabric name or file (default gray-interlock)");
+    cmd->add_option("--materials", args->materials_dir, "folder of fabric JSON files");
+    cmd->add_option("--out", args->out, "output folder")->required();
+    cmd->callback([args] { run_eval_dress(*args); });
+}
 
 void add_dress_command(CLI::App& app) {
     auto args = std::make_shared<DressArgs>();

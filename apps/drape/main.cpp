@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     drape::app::add_eval_segment_command(app);
     drape::app::add_pattern_command(app);
     drape::app::add_dress_command(app);
+    drape::app::add_eval_dress_command(app);
     drape::app::add_synth_command(app);
     try {
         app.parse(argc, argv);

@@ -414,17 +414,25 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
         mesh_options.target_edge_cm = options.edge_cm;
         const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, meshes[i]);
         if (!meshed.usable()) throw std::runtime_error("drape synth: meshing failed: " + meshed.brief_report());
-        Eigen::MatrixX3d X0;
-        const garment::DressingSummary dressed = garment::dress_garment(
-            pattern, meshes[i], model, shaped, scene.pose, garment::DressingOptions{}, X0);
         garment::DrapeOptions drape_options;
         drape_options.max_steps = options.max_steps;
         // Untangling and the fallback after a failed static solve get at most a third each.
         drape_options.max_untangle_steps = std::min(drape_options.max_untangle_steps, options.max_steps / 3);
         drape_options.fallback_steps = std::min(drape_options.fallback_steps, options.max_steps / 3);
         drape_options.min_steps = std::min(drape_options.min_steps, options.max_steps);
-        const garment::DrapeSummary d = garment::drape_garment(meshes[i], X0, obstacle_V, obstacle_F, g.material,
-                                                               drape_options, draped[i]);
+        // A single garment is dressed in the rest A-pose and moved to the scene's pose with the
+        // body (garment::dress_and_drape: starts without crossings); the garments of an outfit
+        // are dressed in the scene's pose, each over the ones draped before it.
+        garment::DressingSummary dressed;
+        garment::DrapeSummary d;
+        if (scene.garments.size() == 1) {
+            d = garment::dress_and_drape(pattern, meshes[i], model, shaped, scene.pose, g.material,
+                                         garment::DressingOptions{}, drape_options, draped[i], &dressed);
+        } else {
+            Eigen::MatrixX3d X0;
+            dressed = garment::dress_garment(pattern, meshes[i], model, shaped, scene.pose, garment::DressingOptions{}, X0);
+            d = garment::drape_garment(meshes[i], X0, obstacle_V, obstacle_F, g.material, drape_options, draped[i]);
+        }
         const std::vector<cloth::Hinge> hinges = cloth::build_hinges(meshes[i].cloth);
         mean_curvature[i] = cloth::vertex_local_curvature(meshes[i].cloth, hinges, draped[i]).mean();
         if (i + 1 < scene.garments.size()) {

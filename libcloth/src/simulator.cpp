@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <map>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -206,7 +207,10 @@ struct Simulator::Impl {
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> planes;  // (point, normal)
     double query_radius = 0;
     Eigen::MatrixX3d step_start;          // x at the start of the step (friction, drag)
-    double step_dt = 0;                   // 0 in the static solve (no friction, no drag)
+    double step_dt = 0;                   // 0 in the static solve (no drag)
+    // The static solve's friction: displacements are measured from the state it starts at
+    // and the slip distance ε is that of the damping time (stiction around that state).
+    bool static_friction = false;
     HessianMode hessian_mode = HessianMode::gauss_newton;  // of the elastic terms, this iteration
 
     // Element buffers (filled in parallel, scattered serially for determinism).
@@ -394,7 +398,7 @@ struct Simulator::Impl {
     // within the thickness, with their contact normal and penalty force there.
     void lag_friction() {
         friction.clear();
-        if (step_dt <= 0 || !obstacle || options.obstacle_friction <= 0) return;
+        if (!friction_active() || !obstacle || options.obstacle_friction <= 0) return;
         const double h = options.contact_thickness_m;
         for (const VertexContact& c : contacts)
             if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h)
@@ -425,13 +429,16 @@ struct Simulator::Impl {
     // at its start, with their frames and penalty forces λ = k (h − d).
     void lag_pair_friction(const Eigen::MatrixX3d& p) {
         pair_friction.clear();
-        if (step_dt <= 0 || !options.self_contact || options.cloth_friction <= 0) return;
+        if (!friction_active() || !options.self_contact || options.cloth_friction <= 0) return;
         const double h = options.contact_thickness_m, k = self_contact_stiffness();
         for (const internal::PairFrame& f : self_contact.contact_frames(p, h))
             pair_friction.push_back({f, k * (h - f.distance_m)});
     }
 
-    double friction_epsilon() const { return options.friction_slip_speed_m_per_s * step_dt; }
+    bool friction_active() const { return step_dt > 0 || static_friction; }
+    double friction_epsilon() const {
+        return options.friction_slip_speed_m_per_s * (step_dt > 0 ? step_dt : options.static_damping_time_s);
+    }
 
     // ---- energy ------------------------------------------------------------------------
     // Total energy of the frozen model at `p`; optionally the full gradient (3V) and, added
@@ -538,7 +545,7 @@ struct Simulator::Impl {
                         want_h ? vertex_slots.data() + 9 * i : nullptr);
             }
         }
-        if (step_dt > 0)
+        if (friction_active())
             for (const FrictionContact& c : friction) {
                 const int i = c.vertex;
                 e += friction_energy((p.row(i) - step_start.row(i)).transpose(), c.normal, c.normal_force,
@@ -555,7 +562,7 @@ struct Simulator::Impl {
         }
         // Cloth–cloth friction: μ λ f₀ of the closest points' relative slip u = Σ w_c Δx_c
         // (frame lagged); gradient w_c ∇f₀, Hessian (w wᵀ) ⊗ ∇²f₀ (PSD).
-        if (step_dt > 0)
+        if (friction_active())
             for (const PairFriction& pf : pair_friction) {
                 const auto& v = pf.frame.pair.v;
                 const Eigen::Vector4d& w = pf.frame.weights;
@@ -967,10 +974,23 @@ void Simulator::set_stitches(const std::vector<Stitch>& stitches) {
     }
     m.stitches = stitches;
     m.stitch_rest.resize(stitches.size());
-    std::vector<std::pair<int, int>> excluded;
+    // Contact is ignored between any two vertices of a stitched group (transitively: where
+    // three or four panels meet, as at an underarm, the corners not stitched directly to
+    // each other would otherwise hold the seam open by the contact thickness).
+    DisjointSets groups(n);
     for (std::size_t k = 0; k < stitches.size(); ++k) {
         m.stitch_rest[k] = (m.x.row(stitches[k].a) - m.x.row(stitches[k].b)).norm();
-        excluded.emplace_back(stitches[k].a, stitches[k].b);
+        groups.join(stitches[k].a, stitches[k].b);
+    }
+    std::map<int, std::vector<int>> members;
+    for (const Stitch& st : stitches)
+        for (int v : {st.a, st.b}) members[groups.find(v)].push_back(v);
+    std::vector<std::pair<int, int>> excluded;
+    for (auto& [root, list] : members) {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+        for (std::size_t i = 0; i < list.size(); ++i)
+            for (std::size_t j = i + 1; j < list.size(); ++j) excluded.emplace_back(list[i], list[j]);
     }
     m.self_contact = internal::SelfContact(m.mesh.faces, n, excluded);
     m.set_rest_filter();
@@ -1084,7 +1104,10 @@ StepSummary Simulator::solve_static() {
     Eigen::MatrixX3d p = m.x;
     std::fill(m.stitch_rest.begin(), m.stitch_rest.end(), 0.0);
     m.step_dt = 0;
+    m.step_start = m.x;
+    m.static_friction = m.options.static_friction;
     StepSummary s = m.minimise(p, m.x, 0, m.options.relative_tolerance);
+    m.static_friction = false;
     if (s.termination != StepTermination::non_finite) {
         m.x = p;
         m.v.setZero();

@@ -3,6 +3,8 @@
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
 
+#include "dressing_internal.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,7 +38,7 @@ cloth::SimulatorOptions DrapeOptions::default_simulator_options() {
     o.gravity_m_per_s2 = Eigen::Vector3d(0.0, -9.8, 0.0);
     o.time_step_s = 1e-2;
     o.air_drag_n_s_per_m3 = 2.0;
-    o.max_newton_iterations = 12;
+    o.max_newton_iterations = 3;
     return o;
 }
 
@@ -60,6 +62,8 @@ bool DrapeOptions::is_valid(std::string* why) const {
                     " must be >= 1");
     if (max_untangle_steps < 0)
         return fail("DrapeOptions::max_untangle_steps = " + std::to_string(max_untangle_steps) + " must be >= 0");
+    if (!(body_motion_s > 0 && std::isfinite(body_motion_s)))
+        return fail("DrapeOptions::body_motion_s = " + std::to_string(body_motion_s) + " must be > 0");
     if (fallback_steps < 0)
         return fail("DrapeOptions::fallback_steps = " + std::to_string(fallback_steps) + " must be >= 0");
     if (!(penetration_tolerance_m > 0))
@@ -123,8 +127,68 @@ std::vector<cloth::Stitch> garment_stitches(const GarmentMesh& mesh) {
     return out;
 }
 
+namespace {
+
+// The welded simulation mesh of a garment: one vertex per stitched group, faces renumbered;
+// pattern coordinates stay per face corner (each panel keeps its own rest shape).
+struct Welded {
+    cloth::ClothMesh mesh;
+    std::vector<int> vertex_of;  // garment vertex -> welded vertex
+};
+
+Welded weld(const cloth::ClothMesh& source, const Eigen::MatrixX3d& positions, const Eigen::MatrixX3d& velocities,
+            const std::vector<std::array<int, 2>>& stitches, Eigen::MatrixX3d* welded_velocities) {
+    const int nv = source.vertex_count();
+    const std::vector<int> rep = detail::sewn_representatives(nv, stitches);
+    Welded w;
+    w.vertex_of.assign(size_t(nv), -1);
+    int n = 0;
+    for (int v = 0; v < nv; ++v)
+        if (rep[size_t(v)] == v) w.vertex_of[size_t(v)] = n++;
+    for (int v = 0; v < nv; ++v) w.vertex_of[size_t(v)] = w.vertex_of[size_t(rep[size_t(v)])];
+    Eigen::MatrixX3d x = Eigen::MatrixX3d::Zero(n, 3), vel = Eigen::MatrixX3d::Zero(n, 3);
+    Eigen::VectorXd count = Eigen::VectorXd::Zero(n);
+    for (int v = 0; v < nv; ++v) {
+        const int k = w.vertex_of[size_t(v)];
+        x.row(k) += positions.row(v);
+        vel.row(k) += velocities.row(v);
+        count(k) += 1;
+    }
+    for (int k = 0; k < n; ++k) {
+        x.row(k) /= count(k);
+        vel.row(k) /= count(k);
+    }
+    w.mesh.positions = x;
+    w.mesh.faces = source.faces;
+    for (Eigen::Index f = 0; f < w.mesh.faces.rows(); ++f)
+        for (int c = 0; c < 3; ++c) w.mesh.faces(f, c) = w.vertex_of[size_t(source.faces(f, c))];
+    w.mesh.pattern = source.pattern;
+    w.mesh.pattern_faces = source.pattern_faces;
+    *welded_velocities = vel;
+    return w;
+}
+
+// Body state at time t of a path spread evenly over `duration` (piecewise linear).
+Eigen::MatrixX3d body_at(const std::vector<Eigen::MatrixX3d>& path, double t, double duration) {
+    if (path.size() == 1 || t >= duration) return path.back();
+    const double u = std::max(0.0, t / duration) * double(path.size() - 1);
+    const size_t k = std::min(size_t(u), path.size() - 2);
+    const double a = u - double(k);
+    return (1 - a) * path[k] + a * path[k + 1];
+}
+
+}  // namespace
+
 DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
                            const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3i& body_faces,
+                           const cloth::Material& material, const DrapeOptions& options,
+                           Eigen::MatrixX3d& out_positions) {
+    return drape_garment(mesh, initial_positions, std::vector<Eigen::MatrixX3d>{body_vertices}, body_faces, material,
+                         options, out_positions);
+}
+
+DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+                           const std::vector<Eigen::MatrixX3d>& body_path, const Eigen::MatrixX3i& body_faces,
                            const cloth::Material& material, const DrapeOptions& options,
                            Eigen::MatrixX3d& out_positions) {
     const auto start = std::chrono::steady_clock::now();
@@ -135,12 +199,25 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     require(nv > 0, "drape_garment: the garment mesh is empty");
     require(initial_positions.rows() == nv && initial_positions.allFinite(), "drape_garment: initial_positions has ",
             initial_positions.rows(), " rows (need ", nv, ", all finite)");
+    require(!body_path.empty(), "drape_garment: the body path is empty");
+    for (size_t k = 0; k < body_path.size(); ++k)
+        require(body_path[k].rows() == body_path[0].rows() && body_path[k].allFinite(), "drape_garment: body state ",
+                k, " of the path has ", body_path[k].rows(), " vertices (need ", body_path[0].rows(),
+                ", all finite)");
 
     cloth::ClothMesh cm = mesh.cloth;
     cm.positions = initial_positions;
     cloth::Simulator sim(std::move(cm), material, options.simulator);
-    sim.set_obstacle(cloth::Obstacle(body_vertices, body_faces));
+    sim.set_obstacle(cloth::Obstacle(body_path.front(), body_faces));
     sim.set_stitches(garment_stitches(mesh));
+    // Garment vertex -> simulation vertex (the identity until the seams are welded).
+    std::vector<int> sim_vertex(static_cast<size_t>(nv));
+    for (int v = 0; v < nv; ++v) sim_vertex[size_t(v)] = v;
+    const auto garment_positions = [&](const Eigen::MatrixX3d& x) {
+        Eigen::MatrixX3d out(nv, 3);
+        for (int v = 0; v < nv; ++v) out.row(v) = x.row(sim_vertex[size_t(v)]);
+        return out;
+    };
 
     DrapeSummary summary;
     summary.vertices = nv;
@@ -154,13 +231,58 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
         summary.initial_seam_gap_max_m = r0.max_stitch_gap_m;
         summary.initial_self_intersections = r0.self_intersections;
     }
+    std::string notes;
+    const bool moving = body_path.size() > 1;
+    int motion_steps = 0;  // steps of the body motion taken
+    // The body moves over body_motion_s, slower if needed so that no body vertex moves more
+    // than half the contact thickness in a step (a faster surface can pass through a cloth
+    // vertex within one step and push it out on the wrong side).
+    int motion_total = 0;
+    double motion_s = options.body_motion_s;
+    if (moving) {
+        Eigen::VectorXd travelled = Eigen::VectorXd::Zero(body_path[0].rows());
+        for (size_t k = 1; k < body_path.size(); ++k)
+            travelled += (body_path[k] - body_path[k - 1]).rowwise().norm();
+        const double per_step = 0.5 * options.simulator.contact_thickness_m;
+        motion_total = std::max({1, int(std::ceil(options.body_motion_s / options.simulator.time_step_s)),
+                                 int(std::ceil(travelled.maxCoeff() / per_step))});
+        motion_s = motion_total * options.simulator.time_step_s;
+    }
+    bool weld_tried = false;
 
-    // Steps until the seams are closed and the cloth is at rest (or `budget` runs out).
-    // Returns false when a step failed or the caller cancelled (summary says which).
+    // Welds the stitched vertices of the simulation (seams closed).
+    auto weld_now = [&]() {
+        weld_tried = true;
+        Eigen::MatrixX3d v;
+        Welded w = weld(mesh.cloth, sim.positions(), sim.velocities(), mesh.stitches, &v);
+        try {
+            w.mesh.validate();
+        } catch (const InvalidInput& e) {
+            notes += std::string(notes.empty() ? "" : "; ") + "seams not welded (" + e.what() + ")";
+            return;
+        }
+        cloth::Simulator next(std::move(w.mesh), material, options.simulator);
+        next.set_obstacle(*sim.obstacle());
+        next.set_velocities(v);
+        sim = std::move(next);
+        sim_vertex = w.vertex_of;
+        summary.welded = true;
+        summary.steps_to_weld = summary.steps;
+    };
+
+    // Steps until the seams are closed, the body has reached the end of its path and the
+    // cloth is at rest (or `budget` runs out). Returns false when a step failed or the
+    // caller cancelled (summary says which).
     bool settled = false;
     auto run_steps = [&](int budget, int min_steps, DrapePhase phase) {
         settled = false;
         for (int k = 0; k < budget; ++k) {
+            // The body moves once the seams are closed.
+            const bool in_motion = moving && motion_steps < motion_total && summary.steps_to_close_seams >= 0;
+            if (in_motion) {
+                ++motion_steps;
+                sim.move_obstacle(body_at(body_path, motion_steps * options.simulator.time_step_s, motion_s));
+            }
             const cloth::StepSummary s = sim.step();
             if (!s.usable()) {
                 summary.termination = DrapeTermination::step_failed;
@@ -172,21 +294,24 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
             summary.kinetic_energy_j = ke;
             const bool closed = s.max_stitch_gap_m < options.seam_gap_tolerance_m;
             if (closed && summary.steps_to_close_seams < 0) summary.steps_to_close_seams = summary.steps;
-            const DrapePhase reported = closed && phase == DrapePhase::closing_seams ? DrapePhase::settling : phase;
+            if (closed && options.weld_seams && !weld_tried && !sim.stitches().empty()) weld_now();
+            const DrapePhase reported = in_motion ? DrapePhase::moving_body
+                                        : closed && phase == DrapePhase::closing_seams ? DrapePhase::settling
+                                                                                        : phase;
             if (options.on_progress && !options.on_progress({reported, summary.steps, s.max_stitch_gap_m, ke, s.newton_iterations,
                                                          s.seconds_total})) {
                 summary.termination = DrapeTermination::cancelled;
                 summary.message = "cancelled at step " + std::to_string(summary.steps);
                 return false;
             }
-            if (k + 1 >= min_steps && closed && ke / total_mass < options.settled_kinetic_energy_j_per_kg) {
+            const bool body_done = !moving || motion_steps >= motion_total;
+            if (k + 1 >= min_steps && closed && body_done && ke / total_mass < options.settled_kinetic_energy_j_per_kg) {
                 settled = true;
                 return true;
             }
         }
         return true;
     };
-
     if (summary.initial_self_intersections > 0 && options.max_untangle_steps > 0) {
         cloth::SimulatorOptions loose = options.simulator;
         loose.self_contact = false;
@@ -238,14 +363,14 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
                           r.max_stitch_gap_m < options.seam_gap_tolerance_m && r.self_intersections == 0;
         if (good) {
             sim.set_positions(twin.positions());
-            sim.set_velocities(Eigen::MatrixX3d::Zero(nv, 3));
+            sim.set_velocities(Eigen::MatrixX3d::Zero(sim.positions().rows(), 3));
         } else {
             // Equilibrium by stepping instead, from the settled state.
             const std::string reason = "static solve: " + s.brief_report() + ", penetration " +
                                        std::to_string(1000 * r.max_penetration_m) + " mm, " +
                                        std::to_string(r.self_intersections) + " self-intersections";
             sim.set_positions(before);
-            sim.set_velocities(Eigen::MatrixX3d::Zero(nv, 3));
+            sim.set_velocities(Eigen::MatrixX3d::Zero(sim.positions().rows(), 3));
             ok = run_steps(options.fallback_steps, 1, DrapePhase::static_solve);
             if (ok) {
                 summary.termination = settled ? DrapeTermination::converged : DrapeTermination::static_failed;
@@ -260,9 +385,27 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     summary.vertices_inside = r.vertices_inside;
     summary.self_intersections = r.self_intersections;
     summary.converged = summary.termination == DrapeTermination::converged;
-    out_positions = sim.positions();
+    out_positions = garment_positions(sim.positions());
+    if (!notes.empty()) summary.message += (summary.message.empty() ? "" : "; ") + notes;
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
+}
+
+DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
+                             const body::ShapedBody& shaped, const body::Pose& pose, const cloth::Material& material,
+                             const DressingOptions& dressing_options, const DrapeOptions& options,
+                             Eigen::MatrixX3d& out_positions, DressingSummary* dressing) {
+    std::string why;
+    require(pose.is_valid(&why), "dress_and_drape: pose: ", why);
+    const body::Pose rest = body::Pose::rest();
+    Eigen::MatrixX3d X0;
+    const DressingSummary dressed = dress_garment(pattern, mesh, model, shaped, rest, dressing_options, X0);
+    if (dressing) *dressing = dressed;
+    const bool at_rest = pose.translation.isZero(0) && pose.rotations.isZero(0);
+    const std::vector<Eigen::MatrixX3d> path =
+        at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
+                : pose_path(model, shaped, rest, pose, 11);
+    return drape_garment(mesh, X0, path, model.faces, material, options, out_positions);
 }
 
 }  // namespace drape::garment

@@ -720,4 +720,14 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     return summary;
 }
 
+std::vector<Eigen::MatrixX3d> pose_path(const body::BodyModel& model, const body::ShapedBody& shaped,
+                                        const body::Pose& from, const body::Pose& to, int states) {
+    require(states >= 2, "pose_path: states = ", states, " must be >= 2");
+    std::vector<Eigen::MatrixX3d> path;
+    path.reserve(size_t(states));
+    for (int k = 0; k < states; ++k)
+        path.push_back(body::pose_body(model, shaped, body::interpolate_pose(from, to, double(k) / (states - 1))).vertices);
+    return path;
+}
+
 }  // namespace drape::garment

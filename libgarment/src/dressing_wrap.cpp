@@ -14,8 +14,12 @@ namespace {
 using body::Joint;
 using body::index;
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kCapBlendCm = 8.0;
-constexpr double kCrotchBlendCm = 8.0;  // pants: leg tubes -> pelvis tube above the crotch  // sleeve length over which the cap leaves the armhole
+// A sleeve is wrapped as a tube around its arm, starting this far down the arm from where
+// the arm leaves the torso panels, with its cap seam open: the simulation sews the cap to
+// the armhole (blending the cap onto the wrapped armhole crossed the torso panels at the
+// underarm in every pose: 9-91 crossing triangle pairs on the mean bodies).
+constexpr double kSleeveOffsetM = 0.04;
+constexpr double kCrotchBlendCm = 8.0;  // pants: leg tubes -> pelvis tube above the crotch
 
 }  // namespace
 
@@ -259,34 +263,6 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
     }
     const std::vector<Joint> torso = {Joint::pelvis, Joint::spine, Joint::chest, Joint::neck};
     const double crotch_y = waist_y + 0.01 * (pants_inseam_cm - pants_waist_cm);
-    // The wrapped armholes of each side: (fraction from underarm to shoulder tip, position),
-    // from the front torso panel's edge 2 (left, +x) or 6 (right) and the back panel's edge
-    // 6 (left: the back is turned, its -x side is the body's left) or 2 (right).
-    int torso_panel[2] = {-1, -1};  // front, back
-    for (size_t p = 0; p < pattern.panels.size(); ++p)
-        if (role_of(pattern, pattern.panels[p].name) == Role::torso)
-            torso_panel[pattern.placements[p].body_part == BodyPart::back_torso ? 1 : 0] = int(p);
-    std::vector<std::pair<double, Eigen::Vector3d>> slits[2][2];
-    const auto armhole_slit = [&](bool left, bool back_half) -> const std::vector<std::pair<double, Eigen::Vector3d>>& {
-        auto& slit = slits[left ? 0 : 1][back_half ? 1 : 0];
-        const int panel = torso_panel[back_half ? 1 : 0];
-        if (!slit.empty() || panel < 0) return slit;
-        const bool plus_x = left != back_half;  // the panel's +x armhole (edge 2)
-        const int edge = plus_x ? 2 : 6;
-        const int n_edges = int(pattern.panels[size_t(panel)].edges.size());
-        if (n_edges != 8) return slit;
-        for (int v = 0; v < nv; ++v) {
-            if (mesh.panel_of_vertex(v) != panel) continue;
-            double f = -1;
-            if (mesh.boundary_edge(v) == edge) f = mesh.boundary_fraction(v);
-            if (mesh.boundary_edge(v) == edge + 1 && mesh.boundary_fraction(v) == 0.0) f = 1.0;
-            if (f < 0) continue;
-            slit.emplace_back(plus_x ? f : 1.0 - f, out.row(v).transpose());
-        }
-        std::sort(slit.begin(), slit.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        return slit;
-    };
-
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
         const PanelPlacement& place = pattern.placements[p];
@@ -331,29 +307,14 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                 const Eigen::Vector2d axis = chain_at_height(J, torso, c.y());
                 const double d0 = std::clamp((0.01 * torso_half_width_cm * 2 / kPi - std::abs(c.x() - axis.x())) /
                                                  std::max(0.3, std::abs(a.x())), 0.0, 0.15);
-                chain_at_length(J, arm, d0 + 0.01 * (top - q.y()), &c, &a);
+                chain_at_length(J, arm, d0 + kSleeveOffsetM + 0.01 * (top - q.y()), &c, &a);
                 const Eigen::Vector3d up = (Eigen::Vector3d::UnitY() - a.y() * a).normalized();
                 Eigen::Vector3d front = a.cross(up);
                 if (front.z() < 0) front = -front;
                 const double theta = 2 * kPi * t, r = 0.01 * width / (2 * kPi);
                 const double side = left ? -1.0 : 1.0;  // +x of a left sleeve runs to the back
                 const Eigen::Vector3d tube = c + r * (std::cos(theta) * up + side * std::sin(theta) * front);
-                // Near the cap the sleeve lies on the armhole (already wrapped: torso panels
-                // come first), its front half on the front armhole and its back half on the
-                // back one (+x of a left sleeve runs to the back): cap middle at the shoulder
-                // tip, cap ends at the underarm; it blends into the arm tube over kCapBlendCm.
-                const auto& slit = armhole_slit(left, left ? t > 0 : t < 0);
-                const double blend = std::clamp((top - q.y()) / std::min(kCapBlendCm, 0.5 * top), 0.0, 1.0);
-                if (blend >= 1.0 || slit.size() < 2) {
-                    out.row(v) = tube.transpose();
-                    continue;
-                }
-                const double tip = 1.0 - 2.0 * std::abs(t);  // 1 at the shoulder tip
-                size_t k = 1;
-                while (k + 1 < slit.size() && slit[k].first < tip) ++k;
-                const double u = std::clamp((tip - slit[k - 1].first) / std::max(1e-12, slit[k].first - slit[k - 1].first), 0.0, 1.0);
-                const Eigen::Vector3d on_slit = (1 - u) * slit[k - 1].second + u * slit[k].second;
-                out.row(v) = ((1 - blend) * on_slit + blend * tube).transpose();
+                out.row(v) = tube.transpose();
                 continue;
             }
             double y = 0;

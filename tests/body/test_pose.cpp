@@ -85,6 +85,27 @@ TEST_CASE("named poses are valid and do what they say", "[body][pose]") {
     CHECK(walk.joints(index(Joint::right_ankle), 2) > walk.joints(index(Joint::left_ankle), 2) + 0.2);
 }
 
+TEST_CASE("interpolate_pose turns every joint along the short arc", "[body][pose]") {
+    const Pose a = named_pose(NamedPose::walking), b = named_pose(NamedPose::t_pose);
+    CHECK((interpolate_pose(a, b, 0.0).rotations - a.rotations).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK((interpolate_pose(a, b, 1.0).rotations - b.rotations).cwiseAbs().maxCoeff() < 1e-12);
+    // From rest, half way is half the angle about the same axis.
+    Pose one;
+    one.rotations.row(index(Joint::left_elbow)) << 0.3, -1.2, 0.4;
+    one.translation << 0.2, 0.0, -0.4;
+    const Pose half = interpolate_pose(Pose::rest(), one, 0.5);
+    CHECK((half.rotations.row(index(Joint::left_elbow)) - 0.5 * one.rotations.row(index(Joint::left_elbow))).norm() < 1e-12);
+    CHECK((half.translation - Eigen::Vector3d(0.1, 0.0, -0.2)).norm() < 1e-15);
+    // Two rotations of 170 degrees about opposite axes are 20 degrees apart: the path turns
+    // through pi (the short way), not through zero.
+    Pose p, q;
+    p.rotations.row(index(Joint::spine)) << 0, 170 * M_PI / 180, 0;
+    q.rotations.row(index(Joint::spine)) << 0, -170 * M_PI / 180, 0;
+    const Eigen::Vector3d mid = interpolate_pose(p, q, 0.5).rotations.row(index(Joint::spine)).transpose();
+    CHECK(mid.norm() == Approx(M_PI).epsilon(1e-9));
+    CHECK_THROWS_AS(interpolate_pose(p, q, 1.5), drape::InvalidInput);
+}
+
 TEST_CASE("invalid poses are rejected with a message", "[body][pose]") {
     Pose pose;
     pose.rotations(index(Joint::left_knee), 0) = std::nan("");

@@ -416,3 +416,56 @@ TEST_CASE("friction between cloth layers stops a sliding layer as Coulomb's law 
     CHECK(held == Approx(0.5 * 0.5 / (2 * 0.6 * 9.8)).epsilon(0.3));
     CHECK(std::abs(speed_friction) < 0.02);
 }
+
+TEST_CASE("solve_static keeps Coulomb friction: a patch sticks on a slope below the friction angle",
+          "[cloth][contact][friction][static]") {
+    // A 0.2 m patch rests on a plane tilted 12 degrees (tan = 0.21). With obstacle friction
+    // 0.4 the static equilibrium holds it where it lies; with 0.1 (or with the static solve's
+    // friction off) no equilibrium exists near it and it slides down the slope.
+    const double tilt = 12.0 * kPi / 180;
+    const Eigen::Vector3d down_slope(0, -std::cos(tilt), -std::sin(tilt));  // in the plane, downhill
+    const Eigen::Vector3d across(1, 0, 0), normal = across.cross(-down_slope).normalized();
+    Eigen::MatrixX3d plane(4, 3);
+    plane.row(0) = (-across - down_slope).transpose();
+    plane.row(1) = (across - down_slope).transpose();
+    plane.row(2) = (across + down_slope).transpose();
+    plane.row(3) = (-across + down_slope).transpose();
+    Eigen::MatrixX3i quad(2, 3);
+    quad << 0, 1, 2, 0, 2, 3;
+    // Counter-clockwise seen from above (the obstacle's outside).
+    if ((plane.row(1) - plane.row(0)).cross(plane.row(2) - plane.row(0)).z() < 0) quad << 0, 2, 1, 0, 3, 2;
+    auto run = [&](double mu, bool static_friction) {
+        SimulatorOptions options;
+        options.obstacle_friction = mu;
+        options.static_friction = static_friction;
+        options.max_newton_iterations = 200;
+        const Eigen::Vector3d up = normal.z() > 0 ? normal : Eigen::Vector3d(-normal);
+        ClothMesh m = make_square_grid(6, 0.2, 0.0049 * up - 0.1 * across + 0.1 * down_slope, across, -down_slope);
+        // Settled first by time steps with friction that holds it (its normal forces then
+        // balance its weight), then solved for equilibrium with the options under test.
+        SimulatorOptions settle;
+        settle.obstacle_friction = 0.4;
+        Simulator first(m, drape::test::gray_interlock_material(), settle);
+        first.set_obstacle(Obstacle(plane, quad));
+        for (int k = 0; k < 40; ++k) REQUIRE(first.step().usable());
+        m.positions = first.positions();
+        Simulator sim(m, drape::test::gray_interlock_material(), options);
+        sim.set_obstacle(Obstacle(plane, quad));
+        const Eigen::MatrixX3d start = sim.positions();
+        const StepSummary s = sim.solve_static();
+        INFO("mu " << mu << ", static friction " << static_friction << ": " << s.brief_report());
+        REQUIRE(s.termination != StepTermination::non_finite);
+        const Eigen::MatrixX3d d = sim.positions() - start;
+        return std::make_pair(s, (d * down_slope).mean());
+    };
+    const auto [held, held_slide] = run(0.4, true);
+    INFO("held: " << held.brief_report() << ", slid " << 1000 * held_slide << " mm");
+    CHECK(held.termination == StepTermination::converged);
+    CHECK(std::abs(held_slide) < 0.5e-3);
+    const auto [free, free_slide] = run(0.4, false);
+    INFO("frictionless static solve slid " << 1000 * free_slide << " mm (" << free.brief_report() << ")");
+    CHECK(free_slide > 0.01);
+    const auto [weak, weak_slide] = run(0.1, true);
+    INFO("mu 0.1 slid " << 1000 * weak_slide << " mm (" << weak.brief_report() << ")");
+    CHECK(weak_slide > 0.01);
+}

@@ -5,6 +5,8 @@
 #include <drape/garment/circle_skirt.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/dressing.hpp>
+#include <drape/garment/pants.hpp>
+#include <drape/garment/tshirt.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 
 #include <catch2/catch.hpp>
@@ -118,6 +120,7 @@ TEST_CASE("drape: a skirt on the mean female in A-pose closes its seams and sett
     CHECK(s.penetration_max_m <= 1e-3);
     CHECK(s.self_intersections == 0);
     CHECK(s.usable());
+    CHECK(s.welded);
     CHECK(progress_calls == s.steps);
     REQUIRE(X.rows() == skirt.mesh.cloth.vertex_count());
     CHECK(X.allFinite());
@@ -140,4 +143,68 @@ TEST_CASE("drape: cancelling from the progress callback stops the simulation",
     CHECK(s.steps == 3);
     CHECK_FALSE(s.usable());
     CHECK(X.rows() == skirt.X0.rows());
+}
+
+namespace {
+
+// dress_and_drape on the mean female at 4 cm edges; checks the issue's acceptance criteria
+// and that welded seams are closed exactly.
+void check_dress_and_drape(const std::string& name, const Pattern& pattern, const body::BodyModel& model,
+                           const body::ShapedBody& shaped, body::NamedPose which, const cloth::Material& material) {
+    MeshOptions mo;
+    mo.target_edge_cm = 4.0;
+    GarmentMesh mesh;
+    REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
+    Eigen::MatrixX3d X;
+    DressingSummary dressed;
+    const body::Pose pose = body::named_pose(which);
+    const DrapeSummary s = dress_and_drape(pattern, mesh, model, shaped, pose, material, DressingOptions{},
+                                           DrapeOptions{}, X, &dressed);
+    INFO(name << ": " << dressed.brief_report() << "; " << s.brief_report());
+    WARN(name << ": " << s.brief_report());
+    CHECK(dressed.self_intersections == 0);
+    CHECK(s.usable());
+    CHECK(s.welded);
+    CHECK(s.self_intersections == 0);
+    CHECK(s.penetration_max_m <= 1e-3);
+    double gap = 0;
+    for (const auto& st : mesh.stitches) gap = std::max(gap, (X.row(st[0]) - X.row(st[1])).norm());
+    CHECK(gap == 0.0);
+    // The garment is on the posed body: no vertex deeper than 1 mm inside it.
+    const GarmentStateCheck c = check_garment_state(mesh, X, body::pose_body(model, shaped, pose).vertices, model.faces);
+    CHECK(c.max_penetration_m <= 1e-3);
+}
+
+}  // namespace
+
+TEST_CASE("drape: pants and a t-shirt in A-pose, a skirt moved to a walking pose, seams welded",
+          "[garment][drape]") {
+    DRAPE_REQUIRE_SHARED(material_file, "materials/gray-interlock.json");
+    const cloth::Material material = cloth::load_material(material_file);
+    const body::BodyModel& model = body::BodyModel::default_model();
+    body::ShapedBody shaped;
+    REQUIRE(body::shape_body(model, model.prior.complete(body::SemanticRequest{}), body::ShapeOptions{}, shaped).usable());
+    const body::BodyMeasurements m = body::measure_body(model, shaped.vertices);
+    check_dress_and_drape("pants", make_pants(propose_pants_sizing(m)), model, shaped, body::NamedPose::a_pose, material);
+    check_dress_and_drape("t-shirt", make_tshirt(propose_tshirt_sizing(m)), model, shaped, body::NamedPose::a_pose,
+                          material);
+    check_dress_and_drape("skirt", make_circle_skirt(propose_skirt_sizing(m)), model, shaped, body::NamedPose::walking,
+                          material);
+}
+
+TEST_CASE("drape: a body path of the wrong shape is rejected", "[garment][drape]") {
+    const DressedSkirt skirt(4.0);
+    const cloth::Material material = cloth::builtin_material("gray-interlock");
+    Eigen::MatrixX3d X;
+    std::vector<Eigen::MatrixX3d> path = {skirt.posed.vertices, skirt.posed.vertices.topRows(10)};
+    CHECK_THROWS_WITH(drape_garment(skirt.mesh, skirt.X0, path, skirt.model.faces, material, DrapeOptions{}, X),
+                      Catch::Contains("body state 1"));
+    CHECK_THROWS_WITH(drape_garment(skirt.mesh, skirt.X0, std::vector<Eigen::MatrixX3d>{}, skirt.model.faces,
+                                    material, DrapeOptions{}, X),
+                      Catch::Contains("path is empty"));
+    DrapeOptions o;
+    o.body_motion_s = 0;
+    std::string why;
+    CHECK_FALSE(o.is_valid(&why));
+    CHECK(why.find("body_motion_s") != std::string::npos);
 }

@@ -213,7 +213,7 @@ struct DressedCase {
 std::vector<DressedCase> dress_all(double edge_cm) {
     std::vector<DressedCase> out;
     for (body::Gender g : {body::Gender::female, body::Gender::male})
-        for (body::NamedPose p : {body::NamedPose::a_pose, body::NamedPose::arms_down, body::NamedPose::walking}) {
+        for (body::NamedPose p : {body::NamedPose::a_pose, body::NamedPose::arms_down, body::NamedPose::walking, body::NamedPose::t_pose}) {
             const MeanBody b(g, p);
             for (const auto& [name, pattern] : all_templates(b.m)) {
                 MeshOptions mo;
@@ -223,7 +223,7 @@ std::vector<DressedCase> dress_all(double edge_cm) {
                 Eigen::MatrixX3d X;
                 DressedCase c;
                 c.name = name + " / " + std::string(body::to_string(g)) + " / " +
-                         (p == body::NamedPose::a_pose ? "a_pose" : p == body::NamedPose::arms_down ? "arms_down" : "walking");
+                         (p == body::NamedPose::a_pose ? "a_pose" : p == body::NamedPose::arms_down ? "arms_down" : p == body::NamedPose::t_pose ? "t_pose" : "walking");
                 c.dressing = dress_garment(pattern, mesh, b.model, b.shaped, b.pose, DressingOptions{}, X);
                 c.check = check_garment_state(mesh, X, b.posed.vertices, b.model.faces);
                 if (std::getenv("DRAPE_DRESS_DETAIL") && c.check.self_intersections > 0) {
@@ -275,7 +275,7 @@ TEST_CASE("dressing eval: every template on the mean bodies in three poses (tabl
     }
 }
 
-TEST_CASE("dressing: skirt, pants, shorts and tank top start clean on the mean female and male",
+TEST_CASE("dressing: every template starts clean on the mean female in A-pose; skirt, pants, tank top on the male",
           "[garment][dressing]") {
     // The cases of the 36-case table (docs/dressing.md) that are clean: no self-intersection
     // (seam partners as one vertex) and nothing deeper than 1 mm inside the body.
@@ -285,9 +285,8 @@ TEST_CASE("dressing: skirt, pants, shorts and tank top start clean on the mean f
         std::vector<std::string> garments;
     };
     const std::vector<Case> cases = {
-        {body::Gender::female, body::NamedPose::a_pose, {"skirt", "pants", "shorts", "tank_top"}},
-        {body::Gender::male, body::NamedPose::a_pose, {"skirt", "pants", "tank_top"}},
-        {body::Gender::female, body::NamedPose::walking, {"tank_top"}}};
+        {body::Gender::female, body::NamedPose::a_pose, {"skirt", "pants", "shorts", "tshirt", "tank_top", "dress"}},
+        {body::Gender::male, body::NamedPose::a_pose, {"skirt", "pants", "tank_top"}}};
     for (const Case& k : cases) {
         const MeanBody b(k.gender, k.pose);
         for (const auto& [name, pattern] : all_templates(b.m)) {
@@ -303,7 +302,8 @@ TEST_CASE("dressing: skirt, pants, shorts and tank top start clean on the mean f
             INFO(c.brief_report());
             CHECK(c.self_intersections == 0);
             CHECK(c.max_penetration_m <= 0.001);
-            CHECK(c.max_seam_gap_m < 0.005);
+            // Sleeve caps start open (sewn by the simulation), 4 cm down the arm at most.
+            CHECK(c.max_seam_gap_m < (name == "tshirt" || name == "dress" ? 0.06 : 0.005));
             CHECK(s.self_intersections == c.self_intersections);
             CHECK(s.max_penetration_m == Approx(c.max_penetration_m).margin(1e-12));
         }

@@ -25,6 +25,12 @@ struct Pose {
     bool is_valid(std::string* why = nullptr) const;
 };
 
+/// The pose a fraction s of the way from a to b: every joint turned along the shortest arc
+/// (quaternion slerp of its parent-relative rotation), the root translated linearly. s = 0
+/// gives a, s = 1 gives b. For moving a dressed body from the pose it was dressed in to
+/// another one. \throw drape::InvalidInput if s is outside [0, 1] or a pose is invalid.
+Pose interpolate_pose(const Pose& a, const Pose& b, double s);
+
 /// Named poses used by tests, the demo and later issues.
 enum class NamedPose { a_pose, arms_down, walking, t_pose };
 Pose named_pose(NamedPose which);

@@ -52,6 +52,13 @@ struct SimulatorOptions {
     /// solve_static() damps its Newton steps with M/τ² (as a time step of τ would), which
     /// keeps them bounded along zero-energy modes; the equilibrium is unchanged. > 0.
     double static_damping_time_s = 0.05;
+    /// solve_static() keeps Coulomb friction (obstacle and cloth–cloth), measured from the
+    /// state it starts at, with the normal forces of that state and the slip distance
+    /// friction_slip_speed_m_per_s × static_damping_time_s: an equilibrium in which every
+    /// contact either sticks near its start or slides with |f_t| = μ f_n. Without it a
+    /// garment held up by friction (a skirt on the hips) has no frictionless equilibrium
+    /// near its draped state and slides.
+    bool static_friction = true;
 
     // ---- contact ----
     /// Cloth–obstacle and cloth–cloth contact thickness h (m): a vertex is pushed back while

@@ -93,4 +93,11 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
                               const body::Pose& pose, const DressingOptions& options,
                               Eigen::MatrixX3d& positions);
 
+/// The posed body vertices (#B x 3, world, metres) at `states` poses evenly spaced from
+/// `from` to `to` (body::interpolate_pose), both included: the path drape_garment moves the
+/// body along when a garment dressed in `from` is draped in `to`.
+/// \throw drape::InvalidInput if states < 2 or a pose is invalid.
+std::vector<Eigen::MatrixX3d> pose_path(const body::BodyModel& model, const body::ShapedBody& shaped,
+                                        const body::Pose& from, const body::Pose& to, int states);
+
 }  // namespace drape::garment
