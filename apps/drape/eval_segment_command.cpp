@@ -27,6 +27,8 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <utility>
 
 namespace drape::app {
 
@@ -333,14 +335,22 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--names", args->names, "evaluate only these photos (NAME without extension)");
     cmd->add_flag("--scale-check", args->scale_check,
                   "also measure the wrinkle density of the hand-labelled garments at x0.5 and x2");
-    cmd->add_option("--smoothness", args->options.smoothness,
-                    "SegmentationOptions::smoothness (Potts weight; for tuning)");
-    cmd->add_option("--stroke-distance-weight", args->options.stroke_distance_weight,
-                    "SegmentationOptions::stroke_distance_weight (for tuning)");
-    cmd->add_option("--stroke-colour-weight", args->options.stroke_colour_weight,
-                    "SegmentationOptions::stroke_colour_weight (for tuning)");
-    cmd->add_option("--superpixel-fraction", args->options.superpixel_fraction,
-                    "SegmentationOptions::superpixel_fraction (for tuning)");
+    // SegmentationOptions members exposed for tuning (docs/vision.md, "Tuning tried").
+    vision::SegmentationOptions& o = args->options;
+    const std::pair<const char*, double*> tuning[] = {
+        {"smoothness", &o.smoothness},
+        {"stroke-distance-weight", &o.stroke_distance_weight},
+        {"stroke-colour-weight", &o.stroke_colour_weight},
+        {"superpixel-fraction", &o.superpixel_fraction},
+        {"background-distance-factor", &o.background_distance_factor},
+        {"band-fraction", &o.band_fraction},
+        {"band-smoothness", &o.band_smoothness}};
+    for (const auto& [name, member] : tuning) {
+        std::string member_name = name;
+        std::replace(member_name.begin(), member_name.end(), '-', '_');
+        cmd->add_option(std::string("--") + name, *member,
+                        "SegmentationOptions::" + member_name + " (for tuning)");
+    }
     cmd->callback([args] { run_eval(*args); });
 }
 

@@ -9,11 +9,7 @@ cv::Mat colour_bins(const cv::Mat& image_bgr, int bins) {
     for (int y = 0; y < image_bgr.rows; ++y) {
         const auto* src = image_bgr.ptr<cv::Vec3b>(y);
         auto* dst = out.ptr<int>(y);
-        for (int x = 0; x < image_bgr.cols; ++x) {
-            const int b = src[x][0] * bins / 256, g = src[x][1] * bins / 256,
-                      r = src[x][2] * bins / 256;
-            dst[x] = (b * bins + g) * bins + r;
-        }
+        for (int x = 0; x < image_bgr.cols; ++x) dst[x] = colour_bin(src[x], bins);
     }
     return out;
 }

@@ -8,6 +8,11 @@
 
 namespace drape::vision::detail {
 
+/// Bin index of one BGR colour (bins per channel `bins`).
+inline int colour_bin(const cv::Vec3b& c, int bins) {
+    return ((c[0] * bins / 256) * bins + c[1] * bins / 256) * bins + c[2] * bins / 256;
+}
+
 /// Bin index of every pixel of a BGR image (bins per channel `bins`), CV_32S.
 cv::Mat colour_bins(const cv::Mat& image_bgr, int bins);
 

@@ -33,9 +33,13 @@ bool SegmentationOptions::is_valid(std::string* why) const {
     if (expansion_cycles < 1) return fail("expansion_cycles must be >= 1");
     if (!(stroke_distance_weight >= 0)) return fail("stroke_distance_weight must be >= 0");
     if (!(stroke_colour_weight >= 0)) return fail("stroke_colour_weight must be >= 0");
+    if (!(background_distance_factor >= 0))
+        return fail("background_distance_factor must be >= 0");
     if (!(layout_weight >= 0)) return fail("layout_weight must be >= 0");
     if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
     if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
+    if (!(band_fraction >= 0) || band_fraction > 0.2) return fail("band_fraction must be in [0, 0.2]");
+    if (!(band_smoothness >= 0)) return fail("band_smoothness must be >= 0");
     return true;
 }
 
@@ -154,6 +158,102 @@ void remove_small_pieces(cv::Mat& labels, double min_area, const cv::Mat& fixed)
     }
 }
 
+/// Stage 2b: alpha-expansion at full resolution over the pixels within `band_px` of a
+/// class border; the others keep their class (hard constraints), as do stroked pixels.
+/// Colour models per class from its pixels outside the band (all its pixels if none).
+void refine_band(const cv::Mat& image, const cv::Mat& fixed, int band_px, double gamma,
+                 int bins, cv::Mat& labels) {
+    const cv::Mat k3 = cv::getStructuringElement(cv::MORPH_RECT, {3, 3});
+    cv::Mat hi, lo, band;
+    cv::dilate(labels, hi, k3);
+    cv::erode(labels, lo, k3);
+    band = hi != lo;
+    if (cv::countNonZero(band) == 0) return;
+    cv::dilate(band, band,
+               cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * band_px + 1, 2 * band_px + 1}));
+    cv::Rect roi = cv::boundingRect(band);
+    roi = cv::Rect(roi.x - 1, roi.y - 1, roi.width + 2, roi.height + 2) &
+          cv::Rect(0, 0, labels.cols, labels.rows);
+    int index_of[256];
+    std::fill(index_of, index_of + 256, -1);
+    std::vector<int> ids;
+    cv::Mat lr = labels(roi);  // a view: written back below
+    for (int y = 0; y < lr.rows; ++y)
+        for (int x = 0; x < lr.cols; ++x) {
+            const int id = lr.at<std::uint8_t>(y, x);
+            if (index_of[id] < 0) {
+                index_of[id] = int(ids.size());
+                ids.push_back(id);
+            }
+        }
+    if (ids.size() < 2) return;
+    const size_t L = ids.size();
+    auto bin_of = [&](int y, int x) { return detail::colour_bin(image.at<cv::Vec3b>(y, x), bins); };
+    std::vector<detail::ColourHistogram> inner(L, detail::ColourHistogram(bins)),
+        all(L, detail::ColourHistogram(bins));
+    for (int y = 0; y < labels.rows; ++y)
+        for (int x = 0; x < labels.cols; ++x) {
+            const int k = index_of[labels.at<std::uint8_t>(y, x)];
+            if (k < 0) continue;
+            const int b = bin_of(y, x);
+            all[size_t(k)].add(b);
+            if (!band.at<std::uint8_t>(y, x)) inner[size_t(k)].add(b);
+        }
+    for (size_t k = 0; k < L; ++k) {
+        inner[k].finish();
+        all[k].finish();
+    }
+    // Graph over the free pixels only (band, not stroked); fixed neighbours fold into the
+    // unary terms, so the cost follows the band's size, not the photo's.
+    const cv::Mat img = image(roi);
+    cv::Mat node(roi.size(), CV_32S, cv::Scalar(-1));
+    std::vector<cv::Point> where;
+    for (int y = 0; y < roi.height; ++y)
+        for (int x = 0; x < roi.width; ++x)
+            if (band.at<std::uint8_t>(y + roi.y, x + roi.x) &&
+                (fixed.empty() || fixed.at<std::uint8_t>(y + roi.y, x + roi.x) == 255)) {
+                node.at<int>(y, x) = int(where.size());
+                where.emplace_back(x, y);
+            }
+    if (where.empty()) return;
+    detail::GraphEnergy e;
+    e.nodes = int(where.size());
+    e.labels = int(L);
+    e.unary.assign(where.size() * L, 0.f);
+    std::vector<std::uint8_t> lab(where.size());
+    const double beta = detail::contrast_beta(img);
+    const int dxs[8] = {1, -1, 0, 0, 1, 1, -1, -1}, dys[8] = {0, 0, 1, -1, 1, -1, 1, -1};
+    for (size_t i = 0; i < where.size(); ++i) {
+        const cv::Point q = where[i];
+        lab[i] = static_cast<std::uint8_t>(index_of[lr.at<std::uint8_t>(q)]);
+        const int b = bin_of(q.y + roi.y, q.x + roi.x);
+        float* u = &e.unary[i * L];
+        for (size_t k = 0; k < L; ++k) u[k] = inner[k].total() > 0 ? inner[k].cost(b) : all[k].cost(b);
+        const cv::Vec3b c = img.at<cv::Vec3b>(q);
+        for (int d = 0; d < 8; ++d) {
+            const cv::Point r(q.x + dxs[d], q.y + dys[d]);
+            if (r.x < 0 || r.y < 0 || r.x >= roi.width || r.y >= roi.height) continue;
+            const cv::Vec3b cn = img.at<cv::Vec3b>(r);
+            double d2 = 0;
+            for (int ch = 0; ch < 3; ++ch) d2 += (double(c[ch]) - cn[ch]) * (double(c[ch]) - cn[ch]);
+            const float w = float(gamma * std::exp(-beta * d2) / (d < 4 ? 1.0 : std::sqrt(2.0)));
+            const int j = node.at<int>(r);
+            if (j < 0) {
+                const int fixed_label = index_of[lr.at<std::uint8_t>(r)];
+                for (size_t k = 0; k < L; ++k)
+                    if (int(k) != fixed_label) u[k] += w;
+            } else if (j > int(i)) {
+                e.edge_from.push_back(int(i));
+                e.edge_to.push_back(j);
+                e.edge_weight.push_back(w);
+            }
+        }
+    }
+    detail::alpha_expansion(e, lab, 1);
+    for (size_t i = 0; i < where.size(); ++i)
+        lr.at<std::uint8_t>(where[i]) = static_cast<std::uint8_t>(ids[lab[i]]);
+}
+
 /// Stage 2 and cleanup, at full resolution. `small_ids` holds class ids.
 cv::Mat refine(const cv::Mat& image, const cv::Mat& small_ids, const cv::Mat& fixed,
                double body_height_px, const SegmentationOptions& o, double& seconds) {
@@ -167,6 +267,10 @@ cv::Mat refine(const cv::Mat& image, const cv::Mat& small_ids, const cv::Mat& fi
         detail::majority_vote(index, count, fixed, labels);
     } else if (!fixed.empty()) {
         fixed.copyTo(labels, fixed != 255);
+    }
+    if (o.band_fraction > 0) {
+        const int band = std::max(1, int(std::lround(o.band_fraction * body_height_px)));
+        refine_band(image, fixed, band, o.band_smoothness, o.histogram_bins, labels);
     }
     remove_small_pieces(labels, o.min_piece_fraction * double(labels.total()), fixed);
     seconds = since(t0);
@@ -348,7 +452,8 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
         }
         p.model_seed.push_back(seed);
         const cv::Mat d = geodesic_distance(small, seed, o.stroke_colour_weight, mean_step);
-        p.prior.push_back(d * (o.stroke_distance_weight / (body_h * s)));
+        const double f = ids[k] == o.table.background_id() ? o.background_distance_factor : 1.0;
+        p.prior.push_back(d * (f * o.stroke_distance_weight / (body_h * s)));
     }
     cv::Mat small_idx = solve(small, p, o);
     cv::Mat small_ids(small_idx.size(), CV_8UC1);

@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
+
 using namespace drape;
 using namespace drape::vision;
 
@@ -33,6 +35,45 @@ TEST_CASE("stroke-guided segmentation recovers a drawn figure", "[vision][segmen
     for (int id : {51, 42}) CHECK(test::iou(seg_plain.labels == id, f.labels == id) > 0.93);
     // Arms over the t-shirt's side and the face above the collar are occlusion borders.
     CHECK(cv::countNonZero(seg.occlusion) > 0);
+}
+
+TEST_CASE("the full-resolution band graph cut moves blocky borders onto the image edges",
+          "[vision][segmentation][band]") {
+    const test::SyntheticFigure f = test::make_figure();
+    const cv::Mat strokes = simulate_strokes(f.labels);
+    // Stage 1 on a 60 px grid and no superpixel vote: borders are ~7 px blocks.
+    SegmentationOptions coarse;
+    coarse.working_max_side_px = 60;
+    coarse.refine_boundaries = false;
+    coarse.band_fraction = 0;
+    SegmentationOptions band = coarse;
+    band.band_fraction = 0.012;
+    Segmentation a, b;
+    REQUIRE(segment_with_strokes(f.photo, strokes, &f.joints, coarse, a).usable());
+    REQUIRE(segment_with_strokes(f.photo, strokes, &f.joints, band, b).usable());
+    for (int id : {51, 42}) {
+        const double before = test::iou(a.labels == id, f.labels == id);
+        const double after = test::iou(b.labels == id, f.labels == id);
+        INFO("class " << id << ": IoU " << before << " -> " << after);
+        CHECK(after > before + 0.01);
+        CHECK(after > 0.95);
+    }
+    // Border pixels only: away from the band nothing changes.
+    const cv::Mat changed = a.labels != b.labels;
+    cv::Mat hi, lo, border;
+    cv::dilate(a.labels, hi, cv::Mat());
+    cv::erode(a.labels, lo, cv::Mat());
+    const int r = int(std::lround(band.band_fraction * f.joints.body_height_px()));
+    cv::dilate(hi != lo, border, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * r + 1, 2 * r + 1}));
+    CHECK(cv::countNonZero(changed & ~border) == 0);
+    SegmentationOptions bad;
+    bad.band_fraction = -0.1;
+    CHECK_THROWS_WITH(segment_with_strokes(f.photo, strokes, &f.joints, bad, a),
+                      Catch::Contains("band_fraction"));
+    bad = SegmentationOptions{};
+    bad.background_distance_factor = -1;
+    CHECK_THROWS_WITH(segment_with_strokes(f.photo, strokes, &f.joints, bad, a),
+                      Catch::Contains("background_distance_factor"));
 }
 
 TEST_CASE("automatic segmentation finds and classifies the drawn garments", "[vision][segmentation]") {

@@ -6,7 +6,8 @@
 // contrast-sensitive Potts smoothness, colour histogram models re-estimated GrabCut-style)
 // at a working resolution, then (2) boundary refinement at full resolution: an edge-aware
 // re-clustering into SLIC superpixels, each taking the majority label of its pixels, so
-// that region borders follow the image's colour edges.
+// that region borders follow the image's colour edges, then a pixel-level graph cut at
+// full resolution in a narrow band around the class borders.
 #pragma once
 
 #include <drape/vision/garment_type.hpp>
@@ -37,12 +38,23 @@ struct SegmentationOptions {
     /// difference |dc| costs (1 + stroke_colour_weight |dc| / <|dc|>) times its length,
     /// <|dc|> being the photo's mean neighbour difference (0 = plain distance).
     double stroke_colour_weight = 0.5;      ///< >= 0
+    /// Strokes mode: the background's distance cost is scaled by this. The background
+    /// surrounds the person and fills the frame, so most of its pixels lie far from its
+    /// strokes (drawn along its medial axis) however surely they are background; a
+    /// compact garment region has no such far pixels.
+    double background_distance_factor = 0.625;  ///< >= 0
     /// Automatic mode: weight of the pose-derived spatial prior.
     double layout_weight = 1.0;             ///< >= 0
     bool refine_boundaries = true;
     /// SLIC superpixel size for the refinement, as a fraction of the body height (or of
     /// the image height in strokes mode without joints).
     double superpixel_fraction = 0.016;     ///< > 0
+    /// Stage 2b: pixel-level graph cut at full resolution in a band of this half-width
+    /// (fraction of the body height) around the class borders left by the superpixel
+    /// vote; colour models re-estimated at full resolution, contrast-sensitive Potts term
+    /// of weight `band_smoothness`. 0 turns the stage off.
+    double band_fraction = 0.004;           ///< in [0, 0.2]
+    double band_smoothness = 12.0;          ///< >= 0
     /// Connected pieces of a class smaller than this fraction of the image are merged into
     /// their surroundings.
     double min_piece_fraction = 0.0005;     ///< >= 0
