@@ -1,6 +1,6 @@
 // drape dress --garment skirt|pants|tshirt|dress --sizing G.json|auto --material NAME|PATH
 //             [--materials DIR] [--body P.json] [--pose NAME|POSE.json] [--edge CM]
-//             [--no-render] --out DIR
+//             [--no-render] [--save-dressed] --out DIR
 // drape eval-dress [--garments LIST] [--poses LIST] [--edge CM] [--material NAME|PATH]
 //             [--materials DIR] --out DIR   (the templates x bodies x poses table)
 #include "body_json.hpp"
@@ -54,6 +54,7 @@ struct DressArgs {
     std::string out;
     double edge_cm = 1.5;
     bool no_render = false;
+    bool save_dressed = false;
 };
 
 body::Pose resolve_pose(const std::string& name) {
@@ -193,6 +194,14 @@ void run_dress(const DressArgs& args) {
                       << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
         return true;
     };
+    if (args.save_dressed) {  // the initial state the simulation starts from
+        Eigen::MatrixX3d D;
+        garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), garment::DressingOptions{}, D);
+        write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
+        if (!args.no_render)
+            write_render(dir / "dressed.png", body::pose_body(model, shaped, body::Pose::rest()).vertices, model.faces,
+                         mesh, D);
+    }
     // Dressed in the rest A-pose, sewn, then moved to the pose (garment::dress_and_drape).
     garment::DressingSummary dressed;
     const garment::DrapeSummary draped = garment::dress_and_drape(
@@ -380,6 +389,8 @@ void add_dress_command(CLI::App& app) {
     cmd->add_option("--pose", args->pose, "a_pose (default), arms_down, walking, t_pose, or a POSE.json");
     cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 1.5)");
     cmd->add_flag("--no-render", args->no_render, "skip render.png");
+    cmd->add_flag("--save-dressed", args->save_dressed,
+                  "also write the dressed state the simulation starts from (dressed.obj, dressed.png)");
     cmd->add_option("--out", args->out, "output folder")->required();
     cmd->callback([args] { run_dress(*args); });
 }

@@ -112,6 +112,8 @@ void arap(const Eigen::MatrixX3d& X0, const std::vector<std::array<int, 2>>& edg
 
 constexpr double kSoftM = 0.01;     // soft zone of the radial placement (AxisEnvelope::push)
 constexpr double kLayerGapM = 0.006;  // sleeve kept this far outside the torso panels
+constexpr double kSleeveOffsetM = 0.04;     // sleeve caps start at least this far down the arm
+constexpr double kMaxSleeveOffsetM = 0.15;  // and at most this far
 
 bool arm_joint(int j) {
     for (Joint a : {Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist, Joint::right_shoulder,
@@ -279,16 +281,39 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
         X.row(v) = q.transpose();
     }
     if (!any_sleeve) return;
-    X = detail::wrap_panels(pattern, mesh, skel.joints, [](double) { return Eigen::Vector2d(0.15, 0.1); }, nullptr, &X);
+    // Sleeves: tubes around the posed arms, their caps open. Each sleeve starts as close to
+    // the armhole as it can while every point of it, pushed outside its arm, stays
+    // kLayerGapM outside the torso panels (an envelope about the trunk axis); the simulation
+    // sews the cap. (Pushing the points out of the torso envelope one by one instead
+    // flattens the tube's inner side into a flap beside the arm.)
     detail::AxisEnvelope torso_cloth(trunk_chain, 0.3);
     for (int v = 0; v < nv; ++v)
         if (role_v(v) == detail::Role::torso) torso_cloth.add(X.row(v).transpose());
     torso_cloth.finish();
-    for (int v = 0; v < nv; ++v) {
-        if (role_v(v) != detail::Role::sleeve) continue;
-        const Eigen::Vector3d p = arms[left_v(v) ? 0 : 1].push(X.row(v).transpose(), clearance, kSoftM);
-        X.row(v) = torso_cloth.push(p, kLayerGapM, kSoftM).transpose();
+    const auto torso_panels = [](double) { return Eigen::Vector2d(0.15, 0.1); };  // (unused for sleeves)
+    Eigen::MatrixX3d best = X;
+    for (const BodyPart side : {BodyPart::left_sleeve, BodyPart::right_sleeve}) {
+        for (double offset = kSleeveOffsetM;; offset += 0.01) {
+            Eigen::MatrixX3d S = detail::wrap_panels(pattern, mesh, skel.joints, torso_panels, nullptr, &X, offset);
+            bool clear = true;
+            for (int v = 0; v < nv; ++v) {
+                if (role_v(v) != detail::Role::sleeve ||
+                    pattern.placements[size_t(mesh.panel_of_vertex(v))].body_part != side)
+                    continue;
+                const Eigen::Vector3d p = arms[side == BodyPart::left_sleeve ? 0 : 1].push(S.row(v).transpose(), clearance, kSoftM);
+                clear = clear && (torso_cloth.push(p, kLayerGapM, kSoftM) - p).norm() < 1e-9;
+                S.row(v) = p.transpose();
+            }
+            if (clear || offset >= kMaxSleeveOffsetM) {
+                for (int v = 0; v < nv; ++v)
+                    if (role_v(v) == detail::Role::sleeve &&
+                        pattern.placements[size_t(mesh.panel_of_vertex(v))].body_part == side)
+                        best.row(v) = S.row(v);
+                break;
+            }
+        }
     }
+    X = best;
 }
 
 }  // namespace
@@ -642,7 +667,13 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     auto edges = detail::mesh_edges(mesh.cloth.faces);
     std::vector<double> edge_weight(edges.size(), 1.0);
     std::vector<bool> zero_rest(edges.size(), false);
+    const auto is_sleeve = [&](int v) {
+        return detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve;
+    };
     for (const auto& st : mesh.stitches) {
+        // Sleeve caps start open, down the arm (kSleeveOffsetM): the simulation sews them.
+        // Pulled closed here they would drag the sleeve tube off the arm into a flap.
+        if (is_sleeve(st[0]) != is_sleeve(st[1])) continue;
         edges.push_back({std::min(st[0], st[1]), std::max(st[0], st[1])});
         edge_weight.push_back(kStitchWeight);
         zero_rest.push_back(true);

@@ -23,12 +23,14 @@ using Joints = Eigen::Matrix<double, body::kJointCount, 3>;
 /// spine axis at height y (garment frame), so torso panels wrap on matching ellipses.
 /// \param pelvis_weight if not null, receives per vertex the weight of the pelvis tube for
 /// pants panels (1 above the crotch blend, 0 on the leg tubes; 1 for other panels).
-/// \param sleeves_only place only sleeve panels (others keep `base`'s rows), with the
-/// armhole read from `base` (already placed torso panels): used to put sleeves on the
-/// posed arms around the skinned torso.
+/// \param base if not null, place only sleeve panels (others keep `base`'s rows): used to
+/// put sleeves on the posed arms around the placed torso.
+/// \param sleeve_offset_m how far down the arm, beyond where it leaves the torso panels'
+/// nominal cylinder, a sleeve's cap starts (the cap seam is sewn by the simulation).
 Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, const Joints& joints,
                              const std::function<Eigen::Vector2d(double)>& torso_section,
-                             Eigen::VectorXd* pelvis_weight = nullptr, const Eigen::MatrixX3d* base = nullptr);
+                             Eigen::VectorXd* pelvis_weight = nullptr, const Eigen::MatrixX3d* base = nullptr,
+                             double sleeve_offset_m = 0.04);
 
 /// How a panel of a built-in template is placed (hint: other patterns).
 enum class Role { torso, sleeve, skirt, leg, hint };

@@ -14,11 +14,6 @@ namespace {
 using body::Joint;
 using body::index;
 constexpr double kPi = 3.14159265358979323846;
-// A sleeve is wrapped as a tube around its arm, starting this far down the arm from where
-// the arm leaves the torso panels, with its cap seam open: the simulation sews the cap to
-// the armhole (blending the cap onto the wrapped armhole crossed the torso panels at the
-// underarm in every pose: 9-91 crossing triangle pairs on the mean bodies).
-constexpr double kSleeveOffsetM = 0.04;
 constexpr double kCrotchBlendCm = 8.0;  // pants: leg tubes -> pelvis tube above the crotch
 
 }  // namespace
@@ -236,7 +231,7 @@ double soft_floor(double d, double soft) {
 
 Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, const Joints& J,
                              const std::function<Eigen::Vector2d(double)>& torso_section,
-                             Eigen::VectorXd* pelvis_weight, const Eigen::MatrixX3d* base) {
+                             Eigen::VectorXd* pelvis_weight, const Eigen::MatrixX3d* base, double sleeve_offset_m) {
     const int nv = mesh.cloth.vertex_count();
     Eigen::MatrixX3d out(nv, 3);
     if (base) out = *base;
@@ -307,7 +302,7 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                 const Eigen::Vector2d axis = chain_at_height(J, torso, c.y());
                 const double d0 = std::clamp((0.01 * torso_half_width_cm * 2 / kPi - std::abs(c.x() - axis.x())) /
                                                  std::max(0.3, std::abs(a.x())), 0.0, 0.15);
-                chain_at_length(J, arm, d0 + kSleeveOffsetM + 0.01 * (top - q.y()), &c, &a);
+                chain_at_length(J, arm, d0 + sleeve_offset_m + 0.01 * (top - q.y()), &c, &a);
                 const Eigen::Vector3d up = (Eigen::Vector3d::UnitY() - a.y() * a).normalized();
                 Eigen::Vector3d front = a.cross(up);
                 if (front.z() < 0) front = -front;
