@@ -28,6 +28,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <iomanip>
 #include <cmath>
@@ -118,7 +119,8 @@ void write_garment_glb(const fs::path& path, const garment::GarmentMesh& m, cons
 
 /// Body and garment from the front-left, on a floor, studio light.
 void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,
-                  const garment::GarmentMesh& m, const Eigen::MatrixX3d& X, int width = 600, int height = 900) {
+                  const std::vector<const garment::GarmentMesh*>& meshes, const std::vector<Eigen::MatrixX3d>& Xs,
+                  int width = 600, int height = 900) {
     render::Scene scene;
     render::Mesh b;
     b.name = "body";
@@ -127,16 +129,23 @@ void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Ei
     b.material.colour_srgb = {0.80, 0.74, 0.67};
     b.material.roughness = 0.55;
     scene.meshes.push_back(std::move(b));
-    render::Mesh g;
-    g.name = "garment";
-    g.V = X;
-    g.F = m.cloth.faces;
-    g.UV = m.uv;
-    g.material.colour_srgb = {0.20, 0.33, 0.62};
-    g.material.roughness = 0.85;
-    scene.meshes.push_back(std::move(g));
+    // Blue, then terracotta, then olive for the garments of an outfit.
+    const std::array<Eigen::Vector3d, 3> colours = {Eigen::Vector3d(0.20, 0.33, 0.62), Eigen::Vector3d(0.66, 0.33, 0.22),
+                                                    Eigen::Vector3d(0.42, 0.47, 0.25)};
+    double floor_y = body_V.col(1).minCoeff();
+    for (size_t k = 0; k < meshes.size(); ++k) {
+        render::Mesh g;
+        g.name = "garment" + std::to_string(k);
+        g.V = Xs[k];
+        g.F = meshes[k]->cloth.faces;
+        g.UV = meshes[k]->uv;
+        g.material.colour_srgb = colours[k % colours.size()];
+        g.material.roughness = 0.85;
+        scene.meshes.push_back(std::move(g));
+        floor_y = std::min(floor_y, Xs[k].col(1).minCoeff());
+    }
     scene.floor.enabled = true;
-    scene.floor.height_m = std::min(body_V.col(1).minCoeff(), X.col(1).minCoeff());
+    scene.floor.height_m = floor_y;
     const Eigen::Vector3d lo = body_V.colwise().minCoeff(), hi = body_V.colwise().maxCoeff();
     const Eigen::Vector3d centre = 0.5 * (lo + hi);
     const double focal = 0.5 * height / std::tan(15.0 * 3.14159265358979323846 / 180.0);  // 30° vertical view
@@ -150,7 +159,10 @@ void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Ei
     write_png(path, images.colour);
 }
 
+void run_dress_outfit(const DressArgs& args);
+
 void run_dress(const DressArgs& args) {
+    if (args.garment.find('+') != std::string::npos) return run_dress_outfit(args);
     const auto start = std::chrono::steady_clock::now();
     // Every input is read and checked before the slow work.
     const GarmentType type = garment_type_from_name(args.garment);
@@ -200,7 +212,7 @@ void run_dress(const DressArgs& args) {
         write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
         if (!args.no_render)
             write_render(dir / "dressed.png", body::pose_body(model, shaped, body::Pose::rest()).vertices, model.faces,
-                         mesh, D);
+                         {&mesh}, {D});
     }
     // Dressed in the rest A-pose, sewn, then moved to the pose (garment::dress_and_drape).
     garment::DressingSummary dressed;
@@ -211,7 +223,7 @@ void run_dress(const DressArgs& args) {
 
     write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
     write_garment_glb(dir / "garment.glb", mesh, X);
-    if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh, X);
+    if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, {&mesh}, {X});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const nlohmann::json report = {{"garment", garment_type_name(type)},
                                    {"sizing", to_json(sizing)},
@@ -233,6 +245,124 @@ void run_dress(const DressArgs& args) {
                                    {"dressing", dressed.brief_report()},
                                    {"message", draped.message},
                                    {"seconds_dress", dressed.seconds},
+                                   {"seconds_drape", draped.seconds},
+                                   {"seconds", seconds}};
+    write_json_file(dir / "summary.json", report);
+    if (!draped.usable()) throw std::runtime_error("drape dress: draping not usable: " + draped.brief_report());
+}
+
+}  // namespace
+
+namespace {
+
+// `--garment top+bottom`: an outfit dressed and draped together (one fabric), the top over
+// the bottom's waistband. Files per garment carry its name (garment_tshirt.obj, ...).
+void run_dress_outfit(const DressArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<GarmentType> types;
+    for (size_t a = 0; a <= args.garment.size();) {
+        const size_t b = std::min(args.garment.find('+', a), args.garment.size());
+        types.push_back(garment_type_from_name(args.garment.substr(a, b - a)));
+        a = b + 1;
+    }
+    const auto is_top = [](GarmentType t) { return t == GarmentType::tshirt; };
+    const auto is_bottom = [](GarmentType t) { return t == GarmentType::pants || t == GarmentType::skirt; };
+    require(types.size() == 2 && ((is_top(types[0]) && is_bottom(types[1])) || (is_bottom(types[0]) && is_top(types[1]))),
+            "--garment '", args.garment, "': an outfit is a top and a bottom (tshirt+pants or tshirt+skirt)");
+    if (is_top(types[0])) std::swap(types[0], types[1]);  // inner (bottom) first
+    require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    const body::Pose pose = resolve_pose(args.pose);
+    std::string material_source;
+    const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
+    const body::SemanticRequest request =
+        args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
+    // --sizing auto, or one JSON object with a group per garment: {"tshirt": {...}, "pants": {...}}.
+    nlohmann::json groups;
+    if (args.sizing != "auto") {
+        groups = read_json_file(args.sizing);
+        require(groups.is_object(), args.sizing, ": an outfit's sizing must be an object with a group per garment");
+        for (const auto& [key, value] : groups.items()) {
+            const bool known = std::any_of(types.begin(), types.end(), [&](GarmentType t) { return garment_type_name(t) == key; });
+            require(known, args.sizing, ": group '", key, "' is not a garment of the outfit '", args.garment, "'");
+            require(value.is_object(), args.sizing, ": group '", key, "' must be an object");
+        }
+    }
+    const body::BodyModel& model = body::BodyModel::default_model();
+    body::ShapedBody shaped;
+    const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
+    if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
+    std::vector<GarmentSizing> sizings;
+    std::vector<garment::Pattern> patterns;
+    for (GarmentType t : types) {
+        const std::string name = garment_type_name(t);
+        sizings.push_back(groups.contains(name) ? sizing_from_json(t, groups[name], args.sizing + " (" + name + ")")
+                                                : proposed_sizing(t, shape.measured));
+        patterns.push_back(make_pattern(sizings.back()));
+    }
+
+    const fs::path dir(args.out);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw IoError("cannot create output folder '" + args.out + "': " + ec.message());
+    std::vector<garment::GarmentMesh> meshes(types.size());
+    for (size_t g = 0; g < types.size(); ++g) {
+        const std::string name = garment_type_name(types[g]);
+        garment::write_pattern_svg(dir / ("pattern_" + name + ".svg"), patterns[g]);
+        garment::write_pattern_dxf(dir / ("pattern_" + name + ".dxf"), patterns[g]);
+        garment::write_pattern_json(dir / ("pattern_" + name + ".json"), patterns[g]);
+        garment::MeshOptions mesh_options;
+        mesh_options.target_edge_cm = args.edge_cm;
+        const garment::MeshSummary meshed = garment::mesh_pattern(patterns[g], mesh_options, meshes[g]);
+        if (!meshed.usable()) throw std::runtime_error("drape dress: meshing " + name + " failed: " + meshed.brief_report());
+    }
+    garment::DrapeOptions options;
+    options.on_progress = [](const garment::DrapeProgress& p) {
+        if (p.step % 50 == 0)
+            std::cerr << "drape dress: step " << p.step << ", seam gap " << 1000 * p.seam_gap_max_m
+                      << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
+        return true;
+    };
+    std::vector<Eigen::MatrixX3d> X;
+    std::vector<garment::DressingSummary> dressed;
+    const garment::DrapeSummary draped = garment::dress_and_drape_outfit(
+        patterns, meshes, model, shaped, pose, material, garment::DressingOptions{}, options, X, &dressed);
+    std::cout << "drape dress: " << args.garment << ", " << draped.brief_report() << "\n";
+    const body::PosedBody posed = body::pose_body(model, shaped, pose);
+    nlohmann::json garments = nlohmann::json::array();
+    std::vector<const garment::GarmentMesh*> mesh_ptrs;
+    for (size_t g = 0; g < types.size(); ++g) {
+        const std::string name = garment_type_name(types[g]);
+        write_garment_obj(dir / ("garment_" + name + ".obj"), patterns[g], meshes[g], X[g], "draped " + name + ", world");
+        write_garment_glb(dir / ("garment_" + name + ".glb"), meshes[g], X[g]);
+        const garment::GarmentStateCheck c = garment::check_garment_state(meshes[g], X[g], posed.vertices, model.faces);
+        garments.push_back({{"garment", name},
+                            {"layer", g == 0 ? "inner" : "outer"},
+                            {"sizing", to_json(sizings[g])},
+                            {"vertices", meshes[g].cloth.vertex_count()},
+                            {"seam_gap_max_m", c.max_seam_gap_m},
+                            {"penetration_max_m", c.max_penetration_m},
+                            {"self_intersections", c.self_intersections},
+                            {"dressing", dressed[g].brief_report()}});
+        mesh_ptrs.push_back(&meshes[g]);
+    }
+    if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh_ptrs, X);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const nlohmann::json report = {{"garment", args.garment},
+                                   {"garments", garments},
+                                   {"material", material_source},
+                                   {"pose", args.pose},
+                                   {"edge_cm", args.edge_cm},
+                                   {"vertices", draped.vertices},
+                                   {"stitches", draped.stitches},
+                                   {"seam_gap_max_m", draped.seam_gap_max_m},
+                                   {"penetration_max_m", draped.penetration_max_m},
+                                   {"vertices_inside", draped.vertices_inside},
+                                   {"self_intersections", draped.self_intersections},
+                                   {"converged", draped.converged},
+                                   {"usable", draped.usable()},
+                                   {"welded", draped.welded},
+                                   {"steps", draped.steps},
+                                   {"message", draped.message},
                                    {"seconds_drape", draped.seconds},
                                    {"seconds", seconds}};
     write_json_file(dir / "summary.json", report);
@@ -339,8 +469,8 @@ void run_eval_dress(const EvalDressArgs& args) {
                                  {"seconds", d.seconds + dressed.seconds}});
                 // One render per template and pose, on the median woman.
                 if (std::string(eb.name) == "female_p50")
-                    write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V, model.faces, mesh, X,
-                                 300, 450);
+                    write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V, model.faces, {&mesh},
+                                 {X}, 300, 450);
             }
         }
     }
@@ -374,7 +504,10 @@ void add_dress_command(CLI::App& app) {
         "dress", "Dress a body in a garment: pattern from sizing G, wrapped on the body, seams sewn and "
                  "draped with the cloth simulator (garment.obj/glb, pattern.svg/dxf/json, render.png, "
                  "summary.json)");
-    cmd->add_option("--garment", args->garment, "skirt, pants, tshirt or dress")->required();
+    cmd->add_option("--garment", args->garment,
+                    "skirt, pants, tshirt or dress, or an outfit tshirt+pants / tshirt+skirt (dressed and "
+                    "draped together, one fabric, the top over the waistband; files per garment)")
+        ->required();
     cmd->add_option("--sizing", args->sizing,
                     "G.json with the paper's parameter names (cm, degrees), or 'auto' to derive G from "
                     "the body's measurements")

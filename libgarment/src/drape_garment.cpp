@@ -408,4 +408,113 @@ DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, co
     return drape_garment(mesh, X0, path, model.faces, material, options, out_positions);
 }
 
+namespace {
+
+// The garments of an outfit as one mesh: vertices, faces, stitches and boundary loops
+// renumbered one garment after the other; each garment's flat layout is shifted 10 m along
+// u so that no two garments share pattern space (the self-contact rest-neighbour filter
+// compares pattern positions within a connected piece).
+GarmentMesh concatenate(const std::vector<GarmentMesh>& meshes, std::vector<int>* first_vertex) {
+    GarmentMesh out;
+    int nv = 0, nf = 0, np = 0, ns = 0, panels = 0;
+    for (const GarmentMesh& m : meshes) {
+        nv += m.cloth.vertex_count();
+        nf += m.cloth.face_count();
+        np += int(m.cloth.pattern.rows());
+    }
+    out.cloth.positions.resize(nv, 3);
+    out.cloth.faces.resize(nf, 3);
+    out.cloth.pattern.resize(np, 2);
+    out.cloth.pattern_faces.resize(nf, 3);
+    out.panel_of_vertex.resize(nv);
+    out.panel_point_cm.resize(nv, 2);
+    out.boundary_edge.resize(nv);
+    out.boundary_fraction.resize(nv);
+    out.uv.resize(nv, 2);
+    int v0 = 0, f0 = 0, p0 = 0;
+    for (size_t g = 0; g < meshes.size(); ++g) {
+        const GarmentMesh& m = meshes[g];
+        const int mv = m.cloth.vertex_count(), mf = m.cloth.face_count(), mp = int(m.cloth.pattern.rows());
+        first_vertex->push_back(v0);
+        out.cloth.positions.middleRows(v0, mv) = m.cloth.positions;
+        out.cloth.faces.middleRows(f0, mf) = m.cloth.faces.array() + v0;
+        out.cloth.pattern.middleRows(p0, mp) = m.cloth.pattern;
+        out.cloth.pattern.middleRows(p0, mp).col(0).array() += 10.0 * double(g);
+        out.cloth.pattern_faces.middleRows(f0, mf) = m.cloth.pattern_faces.array() + p0;
+        out.panel_of_vertex.segment(v0, mv) = m.panel_of_vertex.array() + panels;
+        out.panel_point_cm.middleRows(v0, mv) = m.panel_point_cm;
+        out.boundary_edge.segment(v0, mv) = m.boundary_edge;
+        out.boundary_fraction.segment(v0, mv) = m.boundary_fraction;
+        out.uv.middleRows(v0, mv) = m.uv;
+        for (size_t k = 0; k < m.stitches.size(); ++k) {
+            out.stitches.push_back({m.stitches[k][0] + v0, m.stitches[k][1] + v0});
+            out.stitch_seam.push_back(m.stitch_seam[k] + ns);
+        }
+        for (const std::vector<int>& loop : m.boundary_loops) {
+            out.boundary_loops.push_back(loop);
+            for (int& v : out.boundary_loops.back()) v += v0;
+        }
+        int seams = 0;
+        for (int s : m.stitch_seam) seams = std::max(seams, s + 1);
+        ns += seams;
+        panels += m.panel_of_vertex.size() ? m.panel_of_vertex.maxCoeff() + 1 : 0;
+        v0 += mv;
+        f0 += mf;
+        p0 += mp;
+    }
+    first_vertex->push_back(v0);
+    return out;
+}
+
+}  // namespace
+
+DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
+                                    const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                                    const cloth::Material& material, const DressingOptions& dressing_options,
+                                    const DrapeOptions& options, std::vector<Eigen::MatrixX3d>& out_positions,
+                                    std::vector<DressingSummary>* dressing) {
+    require(!patterns.empty() && patterns.size() == meshes.size(), "dress_and_drape_outfit: ", patterns.size(),
+            " patterns and ", meshes.size(), " meshes (need the same number, >= 1)");
+    std::string why;
+    require(pose.is_valid(&why), "dress_and_drape_outfit: pose: ", why);
+    const body::Pose rest = body::Pose::rest();
+    const body::PosedSkeleton skel = body::forward_kinematics(shaped.joints, rest);
+    const auto J = [&](body::Joint j) -> Eigen::Vector3d { return skel.joints.row(body::index(j)).transpose(); };
+    const std::vector<Eigen::Vector3d> trunk = {J(body::Joint::pelvis), J(body::Joint::spine), J(body::Joint::chest),
+                                                J(body::Joint::neck)};
+    const double gap = options.simulator.contact_thickness_m + 0.001;
+    std::vector<Eigen::MatrixX3d> dressed(patterns.size());
+    if (dressing) dressing->clear();
+    for (size_t g = 0; g < patterns.size(); ++g) {
+        const DressingSummary d = dress_garment(patterns[g], meshes[g], model, shaped, rest, dressing_options, dressed[g]);
+        if (dressing) dressing->push_back(d);
+        if (g == 0) continue;
+        // Outside every garment before it: an envelope of their vertices about the trunk.
+        detail::AxisEnvelope inner(trunk, 0.8);
+        for (size_t h = 0; h < g; ++h)
+            for (Eigen::Index v = 0; v < dressed[h].rows(); ++v) inner.add(dressed[h].row(v).transpose());
+        // Grown by 4 bins (4 cm along the axis, 20 degrees about it): a triangle of the outer
+        // garment spanning the inner one's top edge must be pushed out at all its corners.
+        inner.finish(4);
+        for (Eigen::Index v = 0; v < dressed[g].rows(); ++v) {
+            const std::string& panel = patterns[g].panels[size_t(meshes[g].panel_of_vertex(v))].name;
+            if (detail::role_of(patterns[g], panel) == detail::Role::sleeve) continue;
+            dressed[g].row(v) = inner.push(dressed[g].row(v).transpose(), gap, 0.01).transpose();
+        }
+    }
+    std::vector<int> first;
+    const GarmentMesh all = concatenate(meshes, &first);
+    Eigen::MatrixX3d X0(all.cloth.vertex_count(), 3);
+    for (size_t g = 0; g < meshes.size(); ++g) X0.middleRows(first[g], dressed[g].rows()) = dressed[g];
+    const bool at_rest = pose.translation.isZero(0) && pose.rotations.isZero(0);
+    const std::vector<Eigen::MatrixX3d> path =
+        at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
+                : pose_path(model, shaped, rest, pose, 11);
+    Eigen::MatrixX3d X;
+    const DrapeSummary s = drape_garment(all, X0, path, model.faces, material, options, X);
+    out_positions.clear();
+    for (size_t g = 0; g < meshes.size(); ++g) out_positions.push_back(X.middleRows(first[g], first[g + 1] - first[g]));
+    return s;
+}
+
 }  // namespace drape::garment

@@ -54,4 +54,16 @@ TEST_CASE("drape dress rejects bad input with exit code 2", "[apps][dress]") {
     r = run_drape("dress --garment skirt --sizing auto --material gray-interlock --materials \"" + dir.string() +
                   "\" --pose cartwheel --out \"" + dir.string() + "\"");
     CHECK(r.exit_code == 2);
+    // Outfits are a top and a bottom; an outfit's sizing names its garments.
+    r = run_drape("dress --garment tshirt+dress --sizing auto --material gray-interlock --out \"" + dir.string() + "\"");
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("a top and a bottom") != std::string::npos);
+    const auto sizing = dir / "outfit_sizing.json";
+    std::ofstream(sizing) << R"({"skirt": {"l1": 70}})";
+    r = run_drape("dress --garment tshirt+pants --sizing \"" + sizing.string() +
+                  "\" --material gray-interlock --out \"" + dir.string() + "\"");
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("'skirt'") != std::string::npos);
 }

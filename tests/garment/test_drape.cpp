@@ -1,4 +1,5 @@
 #include <drape/body/body_model.hpp>
+#include <drape/core/errors.hpp>
 #include <drape/body/measurements.hpp>
 #include <drape/body/pose.hpp>
 #include <drape/body/shape_body.hpp>
@@ -207,4 +208,41 @@ TEST_CASE("drape: a body path of the wrong shape is rejected", "[garment][drape]
     std::string why;
     CHECK_FALSE(o.is_valid(&why));
     CHECK(why.find("body_motion_s") != std::string::npos);
+}
+
+TEST_CASE("drape: an outfit, a t-shirt over pants, dressed and draped together", "[garment][drape][outfit]") {
+    DRAPE_REQUIRE_SHARED(material_file, "materials/gray-interlock.json");
+    const cloth::Material material = cloth::load_material(material_file);
+    const body::BodyModel& model = body::BodyModel::default_model();
+    body::ShapedBody shaped;
+    REQUIRE(body::shape_body(model, model.prior.complete(body::SemanticRequest{}), body::ShapeOptions{}, shaped).usable());
+    const body::BodyMeasurements m = body::measure_body(model, shaped.vertices);
+    const std::vector<Pattern> patterns = {make_pants(propose_pants_sizing(m)), make_tshirt(propose_tshirt_sizing(m))};
+    std::vector<GarmentMesh> meshes(2);
+    MeshOptions mo;
+    mo.target_edge_cm = 4.0;
+    for (size_t g = 0; g < 2; ++g) REQUIRE(mesh_pattern(patterns[g], mo, meshes[g]).usable());
+    std::vector<Eigen::MatrixX3d> X;
+    std::vector<DressingSummary> dressed;
+    const DrapeSummary s = dress_and_drape_outfit(patterns, meshes, model, shaped, body::Pose::rest(), material,
+                                                  DressingOptions{}, DrapeOptions{}, X, &dressed);
+    INFO(s.brief_report());
+    CHECK(s.usable());  // no crossing within or between the garments, no penetration
+    CHECK(s.initial_self_intersections == 0);
+    REQUIRE(X.size() == 2);
+    REQUIRE(dressed.size() == 2);
+    const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, body::Pose::rest()).vertices;
+    for (size_t g = 0; g < 2; ++g) {
+        REQUIRE(X[g].rows() == meshes[g].cloth.vertex_count());
+        const GarmentStateCheck c = check_garment_state(meshes[g], X[g], body_V, model.faces);
+        INFO("garment " << g << ": " << c.brief_report());
+        CHECK(c.self_intersections == 0);
+        CHECK(c.max_penetration_m <= 1e-3);
+        CHECK(c.max_seam_gap_m == 0.0);
+    }
+    // Layered: the t-shirt hangs over the pants' waistband (its hem below the pants' top).
+    CHECK(X[1].col(1).minCoeff() < X[0].col(1).maxCoeff());
+    CHECK_THROWS_AS(dress_and_drape_outfit(patterns, {meshes[0]}, model, shaped, body::Pose::rest(), material,
+                                           DressingOptions{}, DrapeOptions{}, X),
+                    drape::InvalidInput);
 }

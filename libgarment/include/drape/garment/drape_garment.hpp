@@ -163,4 +163,22 @@ DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, co
                              const DressingOptions& dressing_options, const DrapeOptions& options,
                              Eigen::MatrixX3d& out_positions, DressingSummary* dressing = nullptr);
 
+/// An outfit: several garments dressed and draped together in one simulation (one
+/// fabric), layered in the given order, inner first (e.g. pants, then a t-shirt worn over
+/// their waistband). Each garment is dressed alone in the rest A-pose; every later garment
+/// is then moved radially (about the trunk axis, so it keeps its own shape and cannot
+/// cross itself) to lie at least the contact thickness + 1 mm outside the dressed garments
+/// before it; the garments are sewn, welded and moved to `pose` together, their layers kept
+/// apart by self-contact.
+/// \param out_positions receives one #V_i x 3 matrix per garment.
+/// \param dressing receives one dressing summary per garment if not null.
+/// \return the summary of the joint simulation (vertices, stitches: of the whole outfit;
+///         self-intersections include those between garments).
+/// \throw drape::InvalidInput if patterns and meshes differ in number, or as dress_and_drape.
+DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
+                                    const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                                    const cloth::Material& material, const DressingOptions& dressing_options,
+                                    const DrapeOptions& options, std::vector<Eigen::MatrixX3d>& out_positions,
+                                    std::vector<DressingSummary>* dressing = nullptr);
+
 }  // namespace drape::garment
