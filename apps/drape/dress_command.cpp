@@ -159,6 +159,43 @@ void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Ei
     write_png(path, images.colour);
 }
 
+/// The summary.json keys common to a garment and an outfit.
+nlohmann::json drape_report(const DressArgs& args, const std::string& material_source,
+                            const garment::DrapeSummary& d) {
+    return {{"material", material_source},
+            {"pose", args.pose},
+            {"edge_cm", args.edge_cm},
+            {"vertices", d.vertices},
+            {"stitches", d.stitches},
+            {"seam_gap_max_m", d.seam_gap_max_m},
+            {"penetration_max_m", d.penetration_max_m},
+            {"vertices_inside", d.vertices_inside},
+            {"self_intersections", d.self_intersections},
+            {"converged", d.converged},
+            {"usable", d.usable()},
+            {"steps", d.steps},
+            {"steps_to_close_seams", d.steps_to_close_seams},
+            {"welded", d.welded},
+            {"message", d.message},
+            {"seconds_drape", d.seconds}};
+}
+
+/// Progress on stderr every 50 steps.
+bool print_progress(const garment::DrapeProgress& p) {
+    if (p.step % 50 == 0)
+        std::cerr << "drape dress: step " << p.step << ", seam gap " << 1000 * p.seam_gap_max_m
+                  << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
+    return true;
+}
+
+fs::path make_output_folder(const std::string& out) {
+    const fs::path dir(out);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw IoError("cannot create output folder '" + out + "': " + ec.message());
+    return dir;
+}
+
 void run_dress_outfit(const DressArgs& args);
 
 void run_dress(const DressArgs& args) {
@@ -184,10 +221,7 @@ void run_dress(const DressArgs& args) {
     const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, shape.measured) : given;
     const garment::Pattern pattern = make_pattern(sizing);
 
-    const fs::path dir(args.out);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw IoError("cannot create output folder '" + args.out + "': " + ec.message());
+    const fs::path dir = make_output_folder(args.out);
     garment::write_pattern_svg(dir / "pattern.svg", pattern);
     garment::write_pattern_dxf(dir / "pattern.dxf", pattern);
     garment::write_pattern_json(dir / "pattern.json", pattern);
@@ -200,12 +234,7 @@ void run_dress(const DressArgs& args) {
     std::cerr << "drape dress: " << meshed.brief_report() << "\n";
     Eigen::MatrixX3d X;
     garment::DrapeOptions options;
-    options.on_progress = [](const garment::DrapeProgress& p) {
-        if (p.step % 50 == 0)
-            std::cerr << "drape dress: step " << p.step << ", seam gap " << 1000 * p.seam_gap_max_m
-                      << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
-        return true;
-    };
+    options.on_progress = print_progress;
     if (args.save_dressed) {  // the initial state the simulation starts from
         Eigen::MatrixX3d D;
         garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), garment::DressingOptions{}, D);
@@ -225,28 +254,13 @@ void run_dress(const DressArgs& args) {
     write_garment_glb(dir / "garment.glb", mesh, X);
     if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, {&mesh}, {X});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const nlohmann::json report = {{"garment", garment_type_name(type)},
-                                   {"sizing", to_json(sizing)},
-                                   {"material", material_source},
-                                   {"pose", args.pose},
-                                   {"edge_cm", args.edge_cm},
-                                   {"vertices", draped.vertices},
-                                   {"faces", meshed.faces},
-                                   {"stitches", draped.stitches},
-                                   {"seam_gap_max_m", draped.seam_gap_max_m},
-                                   {"penetration_max_m", draped.penetration_max_m},
-                                   {"vertices_inside", draped.vertices_inside},
-                                   {"self_intersections", draped.self_intersections},
-                                   {"converged", draped.converged},
-                                   {"usable", draped.usable()},
-                                   {"steps", draped.steps},
-                                   {"steps_to_close_seams", draped.steps_to_close_seams},
-                                   {"welded", draped.welded},
-                                   {"dressing", dressed.brief_report()},
-                                   {"message", draped.message},
-                                   {"seconds_dress", dressed.seconds},
-                                   {"seconds_drape", draped.seconds},
-                                   {"seconds", seconds}};
+    nlohmann::json report = drape_report(args, material_source, draped);
+    report["garment"] = garment_type_name(type);
+    report["sizing"] = to_json(sizing);
+    report["faces"] = meshed.faces;
+    report["dressing"] = dressed.brief_report();
+    report["seconds_dress"] = dressed.seconds;
+    report["seconds"] = seconds;
     write_json_file(dir / "summary.json", report);
     if (!draped.usable()) throw std::runtime_error("drape dress: draping not usable: " + draped.brief_report());
 }
@@ -300,10 +314,7 @@ void run_dress_outfit(const DressArgs& args) {
         patterns.push_back(make_pattern(sizings.back()));
     }
 
-    const fs::path dir(args.out);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw IoError("cannot create output folder '" + args.out + "': " + ec.message());
+    const fs::path dir = make_output_folder(args.out);
     std::vector<garment::GarmentMesh> meshes(types.size());
     for (size_t g = 0; g < types.size(); ++g) {
         const std::string name = garment_type_name(types[g]);
@@ -316,12 +327,7 @@ void run_dress_outfit(const DressArgs& args) {
         if (!meshed.usable()) throw std::runtime_error("drape dress: meshing " + name + " failed: " + meshed.brief_report());
     }
     garment::DrapeOptions options;
-    options.on_progress = [](const garment::DrapeProgress& p) {
-        if (p.step % 50 == 0)
-            std::cerr << "drape dress: step " << p.step << ", seam gap " << 1000 * p.seam_gap_max_m
-                      << " mm, kinetic energy " << p.kinetic_energy_j << " J\n";
-        return true;
-    };
+    options.on_progress = print_progress;
     std::vector<Eigen::MatrixX3d> X;
     std::vector<garment::DressingSummary> dressed;
     const garment::DrapeSummary draped = garment::dress_and_drape_outfit(
@@ -347,24 +353,10 @@ void run_dress_outfit(const DressArgs& args) {
     }
     if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh_ptrs, X);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const nlohmann::json report = {{"garment", args.garment},
-                                   {"garments", garments},
-                                   {"material", material_source},
-                                   {"pose", args.pose},
-                                   {"edge_cm", args.edge_cm},
-                                   {"vertices", draped.vertices},
-                                   {"stitches", draped.stitches},
-                                   {"seam_gap_max_m", draped.seam_gap_max_m},
-                                   {"penetration_max_m", draped.penetration_max_m},
-                                   {"vertices_inside", draped.vertices_inside},
-                                   {"self_intersections", draped.self_intersections},
-                                   {"converged", draped.converged},
-                                   {"usable", draped.usable()},
-                                   {"welded", draped.welded},
-                                   {"steps", draped.steps},
-                                   {"message", draped.message},
-                                   {"seconds_drape", draped.seconds},
-                                   {"seconds", seconds}};
+    nlohmann::json report = drape_report(args, material_source, draped);
+    report["garment"] = args.garment;
+    report["garments"] = garments;
+    report["seconds"] = seconds;
     write_json_file(dir / "summary.json", report);
     if (!draped.usable()) throw std::runtime_error("drape dress: draping not usable: " + draped.brief_report());
 }
@@ -403,10 +395,7 @@ void run_eval_dress(const EvalDressArgs& args) {
     for (const std::string& p : args.poses) poses.push_back(resolve_pose(p));
     std::string material_source;
     const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
-    const fs::path dir(args.out);
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw IoError("cannot create output folder '" + args.out + "': " + ec.message());
+    const fs::path dir = make_output_folder(args.out);
 
     const body::BodyModel& model = body::BodyModel::default_model();
     nlohmann::json cases = nlohmann::json::array();

@@ -148,6 +148,18 @@ TEST_CASE("drape: cancelling from the progress callback stops the simulation",
 
 namespace {
 
+// The mean female (shape prior's completion of an empty request) and her measurements.
+struct MeanFemale {
+    const body::BodyModel& model = body::BodyModel::default_model();
+    body::ShapedBody shaped;
+    body::BodyMeasurements m;
+    MeanFemale() {
+        REQUIRE(body::shape_body(model, model.prior.complete(body::SemanticRequest{}), body::ShapeOptions{}, shaped)
+                    .usable());
+        m = body::measure_body(model, shaped.vertices);
+    }
+};
+
 // dress_and_drape on the mean female at 4 cm edges; checks the issue's acceptance criteria
 // and that welded seams are closed exactly.
 void check_dress_and_drape(const std::string& name, const Pattern& pattern, const body::BodyModel& model,
@@ -182,10 +194,10 @@ TEST_CASE("drape: pants and a t-shirt in A-pose, a skirt moved to a walking pose
           "[garment][drape]") {
     DRAPE_REQUIRE_SHARED(material_file, "materials/gray-interlock.json");
     const cloth::Material material = cloth::load_material(material_file);
-    const body::BodyModel& model = body::BodyModel::default_model();
-    body::ShapedBody shaped;
-    REQUIRE(body::shape_body(model, model.prior.complete(body::SemanticRequest{}), body::ShapeOptions{}, shaped).usable());
-    const body::BodyMeasurements m = body::measure_body(model, shaped.vertices);
+    const MeanFemale f;
+    const body::BodyModel& model = f.model;
+    const body::ShapedBody& shaped = f.shaped;
+    const body::BodyMeasurements& m = f.m;
     check_dress_and_drape("pants", make_pants(propose_pants_sizing(m)), model, shaped, body::NamedPose::a_pose, material);
     check_dress_and_drape("t-shirt", make_tshirt(propose_tshirt_sizing(m)), model, shaped, body::NamedPose::a_pose,
                           material);
@@ -213,10 +225,10 @@ TEST_CASE("drape: a body path of the wrong shape is rejected", "[garment][drape]
 TEST_CASE("drape: an outfit, a t-shirt over pants, dressed and draped together", "[garment][drape][outfit]") {
     DRAPE_REQUIRE_SHARED(material_file, "materials/gray-interlock.json");
     const cloth::Material material = cloth::load_material(material_file);
-    const body::BodyModel& model = body::BodyModel::default_model();
-    body::ShapedBody shaped;
-    REQUIRE(body::shape_body(model, model.prior.complete(body::SemanticRequest{}), body::ShapeOptions{}, shaped).usable());
-    const body::BodyMeasurements m = body::measure_body(model, shaped.vertices);
+    const MeanFemale f;
+    const body::BodyModel& model = f.model;
+    const body::ShapedBody& shaped = f.shaped;
+    const body::BodyMeasurements& m = f.m;
     const std::vector<Pattern> patterns = {make_pants(propose_pants_sizing(m)), make_tshirt(propose_tshirt_sizing(m))};
     std::vector<GarmentMesh> meshes(2);
     MeshOptions mo;
