@@ -26,6 +26,8 @@
 #include <drape/render/renderer.hpp>
 
 #include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <array>
@@ -118,7 +120,7 @@ void write_garment_glb(const fs::path& path, const garment::GarmentMesh& m, cons
 }
 
 /// Body and garment from the front-left, on a floor, studio light.
-void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,
+cv::Mat write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,
                   const std::vector<const garment::GarmentMesh*>& meshes, const std::vector<Eigen::MatrixX3d>& Xs,
                   int width = 600, int height = 900) {
     render::Scene scene;
@@ -157,6 +159,7 @@ void write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Ei
         render::render(scene, camera, render::lighting_preset(render::LightingPreset::studio), {}, images);
     std::cerr << "drape dress: " << s.brief_report() << "\n";
     write_png(path, images.colour);
+    return images.colour;
 }
 
 /// The summary.json keys common to a garment and an outfit.
@@ -369,6 +372,7 @@ struct EvalDressArgs {
     std::string material = "gray-interlock";
     std::string materials_dir;
     double edge_cm = 4.0;
+    bool outfit = true;
     std::string out;
 };
 
@@ -399,6 +403,7 @@ void run_eval_dress(const EvalDressArgs& args) {
 
     const body::BodyModel& model = body::BodyModel::default_model();
     nlohmann::json cases = nlohmann::json::array();
+    std::vector<std::pair<std::string, cv::Mat>> sheet_cells;
     std::ostringstream table;
     table << "| garment | body | pose | vertices | seam gap mm | penetration mm | self-int. | converged | usable | steps | s |\n"
           << "|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -458,10 +463,66 @@ void run_eval_dress(const EvalDressArgs& args) {
                                  {"seconds", d.seconds + dressed.seconds}});
                 // One render per template and pose, on the median woman.
                 if (std::string(eb.name) == "female_p50")
-                    write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V, model.faces, {&mesh},
-                                 {X}, 300, 450);
+                    sheet_cells.push_back({args.garments[t] + ", " + args.poses[k],
+                                           write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V,
+                                                        model.faces, {&mesh}, {X}, 300, 450)});
             }
         }
+    }
+    // The outfit (t-shirt over pants) on the median woman in every pose.
+    if (args.outfit) {
+        const EvalBody& eb = kEvalBodies[1];
+        body::SemanticRequest request;
+        request.gender = eb.gender;
+        request[body::Semantic::height_m] = eb.height_m;
+        request[body::Semantic::weight_kg] = eb.weight_kg;
+        body::ShapedBody shaped;
+        const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
+        if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping failed: " + shape.brief_report());
+        const std::vector<garment::Pattern> patterns = {make_pattern(proposed_sizing(GarmentType::pants, shape.measured)),
+                                                        make_pattern(proposed_sizing(GarmentType::tshirt, shape.measured))};
+        std::vector<garment::GarmentMesh> meshes(2);
+        garment::MeshOptions mesh_options;
+        mesh_options.target_edge_cm = args.edge_cm;
+        for (size_t g = 0; g < 2; ++g)
+            if (!garment::mesh_pattern(patterns[g], mesh_options, meshes[g]).usable())
+                throw std::runtime_error("drape eval-dress: meshing the outfit failed");
+        for (size_t k = 0; k < poses.size(); ++k) {
+            std::vector<Eigen::MatrixX3d> X;
+            const garment::DrapeSummary d = garment::dress_and_drape_outfit(
+                patterns, meshes, model, shaped, poses[k], material, garment::DressingOptions{}, garment::DrapeOptions{}, X);
+            std::cout << "drape eval-dress: tshirt+pants / " << eb.name << " / " << args.poses[k] << ": "
+                      << d.brief_report() << std::endl;
+            table << "| tshirt+pants | " << eb.name << " | " << args.poses[k] << " | " << d.vertices << " | " << std::fixed
+                  << std::setprecision(2) << 1000 * d.seam_gap_max_m << " | " << 1000 * d.penetration_max_m << " | "
+                  << d.self_intersections << " | " << (d.converged ? "yes" : "no") << " | "
+                  << (d.usable() ? "**yes**" : "no") << " | " << d.steps << " | " << std::setprecision(1) << d.seconds
+                  << " |\n";
+            table.unsetf(std::ios::floatfield);
+            cases.push_back({{"garment", "tshirt+pants"}, {"body", eb.name}, {"pose", args.poses[k]},
+                             {"vertices", d.vertices}, {"usable", d.usable()}, {"drape", d.brief_report()},
+                             {"seconds", d.seconds}});
+            const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, poses[k]).vertices;
+            sheet_cells.push_back({"tshirt+pants, " + args.poses[k],
+                                   write_render(dir / ("tshirt+pants_" + args.poses[k] + ".png"), body_V, model.faces,
+                                                {&meshes[0], &meshes[1]}, X, 300, 450)});
+        }
+    }
+    // Contact sheet: a row per garment (and the outfit), a column per pose.
+    if (!sheet_cells.empty()) {
+        const int columns = int(poses.size()), w = 300, h = 450, caption = 24;
+        const int rows = (int(sheet_cells.size()) + columns - 1) / columns;
+        cv::Mat sheet(rows * (h + caption), columns * w, CV_8UC3, cv::Scalar(255, 255, 255));
+        for (size_t i = 0; i < sheet_cells.size(); ++i) {
+            const int x0 = int(i % size_t(columns)) * w, y0 = int(i / size_t(columns)) * (h + caption);
+            const cv::Mat& im = sheet_cells[i].second;
+            if (im.rows == h && im.cols == w && im.type() == CV_8UC3) im.copyTo(sheet(cv::Rect(x0, y0, w, h)));
+            cv::putText(sheet, sheet_cells[i].first, cv::Point(x0 + 6, y0 + h + 17), cv::FONT_HERSHEY_SIMPLEX, 0.5,
+                        cv::Scalar(30, 30, 30), 1, cv::LINE_AA);
+        }
+        std::vector<unsigned char> jpeg;
+        cv::imencode(".jpg", sheet, jpeg, {cv::IMWRITE_JPEG_QUALITY, 80});
+        write_text_atomically(dir / "contact_sheet.jpg", std::string(jpeg.begin(), jpeg.end()));
     }
     table << "\n" << usable << " of " << total << " cases usable; " << std::fixed << std::setprecision(1)
           << seconds_sum / std::max(total, 1) << " s per case on average (dress + drape).\n";
@@ -482,6 +543,7 @@ void add_eval_dress_command(CLI::App& app) {
     cmd->add_option("--poses", args->poses, "poses (default: a_pose arms_down walking)");
     cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 4)");
     cmd->add_option("--material", args->material, "fabric name or file (default gray-interlock)");
+    cmd->add_flag("!--no-outfit", args->outfit, "skip the outfit (t-shirt over pants on the median woman)");
     cmd->add_option("--materials", args->materials_dir, "folder of fabric JSON files");
     cmd->add_option("--out", args->out, "output folder")->required();
     cmd->callback([args] { run_eval_dress(*args); });
