@@ -58,6 +58,7 @@ struct DressArgs {
     double edge_cm = 1.5;
     bool no_render = false;
     bool save_dressed = false;
+    double motion_s = garment::DrapeOptions{}.body_motion_s;
 };
 
 body::Pose resolve_pose(const std::string& name) {
@@ -238,6 +239,7 @@ void run_dress(const DressArgs& args) {
     Eigen::MatrixX3d X;
     garment::DrapeOptions options;
     options.on_progress = print_progress;
+    options.body_motion_s = args.motion_s;
     if (args.save_dressed) {  // the initial state the simulation starts from
         Eigen::MatrixX3d D;
         garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), garment::DressingOptions{}, D);
@@ -331,6 +333,7 @@ void run_dress_outfit(const DressArgs& args) {
     }
     garment::DrapeOptions options;
     options.on_progress = print_progress;
+    options.body_motion_s = args.motion_s;
     std::vector<Eigen::MatrixX3d> X;
     std::vector<garment::DressingSummary> dressed;
     const garment::DrapeSummary draped = garment::dress_and_drape_outfit(
@@ -573,6 +576,9 @@ void add_dress_command(CLI::App& app) {
     cmd->add_option("--pose", args->pose, "a_pose (default), arms_down, walking, t_pose, or a POSE.json");
     cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 1.5)");
     cmd->add_flag("--no-render", args->no_render, "skip render.png");
+    cmd->add_option("--motion-seconds", args->motion_s,
+                    "time over which the body moves from the A-pose to --pose after sewing (default 0.6; longer "
+                    "if a body vertex would move more than half the contact thickness per step)");
     cmd->add_flag("--save-dressed", args->save_dressed,
                   "also write the dressed state the simulation starts from (dressed.obj, dressed.png)");
     cmd->add_option("--out", args->out, "output folder")->required();
