@@ -106,8 +106,10 @@ void check_outside_default_body(const std::vector<std::pair<const char*, Pattern
         CHECK(b.count_inside(X) == 0);
         CHECK(s.vertices_inside == 0);
         // Seam partners start together (the pants' crotch points sit a few cm apart on
-        // the two leg tubes; the simulator closes that).
-        CHECK(s.max_seam_gap_m < (std::string(name) == "pants" ? 0.06 : 0.01));
+        // the two leg tubes; the simulator closes that; sleeve caps start open, 4-15 cm
+        // down the arm).
+        if (std::string(name) != "tshirt" && std::string(name) != "dress")
+            CHECK(s.max_seam_gap_m < (std::string(name) == "pants" ? 0.06 : 0.01));
         // The garment hangs on the body: within the body's bounding box grown by 40 cm.
         const Eigen::RowVector3d lo = posed.vertices.colwise().minCoeff(), hi = posed.vertices.colwise().maxCoeff();
         CHECK((X.rowwise() - lo).minCoeff() > -0.4);
@@ -126,10 +128,10 @@ TEST_CASE("dressing: skirt and pants on the default body in A-pose are outside t
                                 {"pants", make_pants(propose_pants_sizing(b.m))}});
 }
 
-// Hidden: OPEN (issue 4, docs/dressing.md). The sleeves of the t-shirt and the dress still
-// cross the torso panels at the armpit, and the push-out no longer moves vertices through
-// other panels, so 3 (t-shirt) and 13 (dress) armpit vertices stay inside the body. Run it
-// with: drape_garment_tests "[open]".
+// Hidden: OPEN (issue 4, docs/dressing.md). On this zero-coefficient body the t-shirt's
+// front panel folds onto itself at the neck and shoulders (9 crossing pairs, 1 vertex
+// inside), the dress has 4 crossings (the sleeves no longer cross the torso). Run it with:
+// drape_garment_tests "[open]".
 TEST_CASE("dressing: t-shirt and dress on the default body in A-pose are outside the body",
           "[garment][dressing][.open]") {
     const PosedDefaultBody b(body::NamedPose::a_pose);
