@@ -244,19 +244,6 @@ int label_of(GarmentType t) {  // labels.txt ids
     return 0;
 }
 
-// Faces of a draped garment turned to face away from the body, so that the garment can
-// join the body as an obstacle (whose inside/outside test follows the face normals).
-Eigen::MatrixX3i faces_outward(const Eigen::MatrixX3d& X, const Eigen::MatrixX3i& F, const cloth::Obstacle& body) {
-    Eigen::MatrixX3i out = F;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        const Eigen::Vector3d a = X.row(F(f, 0)), b = X.row(F(f, 1)), c = X.row(F(f, 2));
-        const Eigen::Vector3d centre = (a + b + c) / 3.0;
-        const cloth::ObstacleQuery q = body.closest(centre, std::numeric_limits<double>::infinity());
-        if (q.found && (b - a).cross(c - a).dot(centre - q.point) < 0) std::swap(out(f, 1), out(f, 2));
-    }
-    return out;
-}
-
 nlohmann::json camera_to_json(const body::Camera& c) {  // the `drape fit-body` camera object
     return {{"model", "pinhole"},
             {"focal_px", c.focal_px},
@@ -396,68 +383,62 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
     const body::PosedBody posed = body::pose_body(model, shaped, scene.pose);
     const Eigen::MatrixX3d body_V = posed.vertices;
     const Eigen::MatrixX3i body_F = model.faces;
-    const cloth::Obstacle body_obstacle(body_V, body_F);
 
-    // Drape the garments in order; each draped garment joins the obstacle of the next.
+    // A single garment is dressed in the rest A-pose and moved to the scene's pose with the
+    // body (garment::dress_and_drape: starts without crossings); the garments of an outfit
+    // are dressed and draped together the same way (garment::dress_and_drape_outfit, lower
+    // garment first, each in its own fabric).
     SynthSummary summary;
     nlohmann::json garment_reports = nlohmann::json::array();
-    std::vector<garment::GarmentMesh> meshes(scene.garments.size());
-    std::vector<Eigen::MatrixX3d> draped(scene.garments.size());
-    std::vector<double> mean_curvature(scene.garments.size());
-    Eigen::MatrixX3d obstacle_V = body_V;
-    Eigen::MatrixX3i obstacle_F = body_F;
-    for (std::size_t i = 0; i < scene.garments.size(); ++i) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const SynthGarment& g = scene.garments[i];
-        const garment::Pattern pattern = make_pattern(g.sizing);
+    const std::size_t n = scene.garments.size();
+    std::vector<garment::Pattern> patterns;
+    std::vector<garment::GarmentMesh> meshes(n);
+    std::vector<garment::MeshSummary> meshed(n);
+    std::vector<cloth::Material> materials;
+    for (std::size_t i = 0; i < n; ++i) {
+        patterns.push_back(make_pattern(scene.garments[i].sizing));
+        materials.push_back(scene.garments[i].material);
         garment::MeshOptions mesh_options;
         mesh_options.target_edge_cm = options.edge_cm;
-        const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, meshes[i]);
-        if (!meshed.usable()) throw std::runtime_error("drape synth: meshing failed: " + meshed.brief_report());
-        garment::DrapeOptions drape_options;
-        drape_options.max_steps = options.max_steps;
-        // Untangling and the fallback after a failed static solve get at most a third each.
-        drape_options.max_untangle_steps = std::min(drape_options.max_untangle_steps, options.max_steps / 3);
-        drape_options.fallback_steps = std::min(drape_options.fallback_steps, options.max_steps / 3);
-        drape_options.min_steps = std::min(drape_options.min_steps, options.max_steps);
-        // A single garment is dressed in the rest A-pose and moved to the scene's pose with the
-        // body (garment::dress_and_drape: starts without crossings); the garments of an outfit
-        // are dressed in the scene's pose, each over the ones draped before it.
-        garment::DressingSummary dressed;
-        garment::DrapeSummary d;
-        if (scene.garments.size() == 1) {
-            d = garment::dress_and_drape(pattern, meshes[i], model, shaped, scene.pose, g.material,
-                                         garment::DressingOptions{}, drape_options, draped[i], &dressed);
-        } else {
-            Eigen::MatrixX3d X0;
-            dressed = garment::dress_garment(pattern, meshes[i], model, shaped, scene.pose, garment::DressingOptions{}, X0);
-            d = garment::drape_garment(meshes[i], X0, obstacle_V, obstacle_F, g.material, drape_options, draped[i]);
-        }
+        meshed[i] = garment::mesh_pattern(patterns[i], mesh_options, meshes[i]);
+        if (!meshed[i].usable()) throw std::runtime_error("drape synth: meshing failed: " + meshed[i].brief_report());
+    }
+    garment::DrapeOptions drape_options;
+    drape_options.max_steps = options.max_steps;
+    // Untangling and the fallback after a failed static solve get at most a third each.
+    drape_options.max_untangle_steps = std::min(drape_options.max_untangle_steps, options.max_steps / 3);
+    drape_options.fallback_steps = std::min(drape_options.fallback_steps, options.max_steps / 3);
+    drape_options.min_steps = std::min(drape_options.min_steps, options.max_steps);
+    std::vector<Eigen::MatrixX3d> draped(n);
+    std::vector<garment::DressingSummary> dressed(n);
+    const auto t0 = std::chrono::steady_clock::now();
+    // An outfit has one drape (one simulation): its summary is every garment's report.
+    const garment::DrapeSummary d =
+        n == 1 ? garment::dress_and_drape(patterns[0], meshes[0], model, shaped, scene.pose, materials[0],
+                                          garment::DressingOptions{}, drape_options, draped[0], &dressed[0])
+               : garment::dress_and_drape_outfit(patterns, meshes, model, shaped, scene.pose, materials,
+                                                 garment::DressingOptions{}, drape_options, draped, &dressed);
+    const double drape_seconds = seconds_since(t0);
+    std::vector<double> mean_curvature(n);
+    for (std::size_t i = 0; i < n; ++i) {
         const std::vector<cloth::Hinge> hinges = cloth::build_hinges(meshes[i].cloth);
         mean_curvature[i] = cloth::vertex_local_curvature(meshes[i].cloth, hinges, draped[i]).mean();
-        if (i + 1 < scene.garments.size()) {
-            const Eigen::MatrixX3i F = faces_outward(draped[i], meshes[i].cloth.faces, body_obstacle);
-            const Eigen::Index nv = obstacle_V.rows(), nf = obstacle_F.rows();
-            obstacle_V.conservativeResize(nv + draped[i].rows(), 3);
-            obstacle_V.bottomRows(draped[i].rows()) = draped[i];
-            obstacle_F.conservativeResize(nf + F.rows(), 3);
-            obstacle_F.bottomRows(F.rows()) = F.array() + int(nv);
-        }
         SynthGarmentResult r;
-        r.type = garment_type_name(g.sizing.type);
+        r.type = garment_type_name(scene.garments[i].sizing.type);
         r.usable = d.usable();
         r.drape_report = d.brief_report();
-        r.seconds = seconds_since(t0);
+        r.seconds = drape_seconds;
         summary.garments.push_back(r);
+        const garment::DressingSummary& ds = dressed[i];
         garment_reports.push_back({{"type", r.type},
-                                   {"vertices", d.vertices},
-                                   {"faces", meshed.faces},
-                                   {"stitches", d.stitches},
-                                   {"dressing", {{"vertices_inside", dressed.vertices_inside},
-                                                 {"vertices_pushed", dressed.vertices_pushed},
-                                                 {"iterations", dressed.iterations},
-                                                 {"max_seam_gap_m", dressed.max_seam_gap_m},
-                                                 {"alignment_rms_m", dressed.alignment_rms_m}}},
+                                   {"vertices", meshes[i].cloth.vertex_count()},
+                                   {"faces", meshed[i].faces},
+                                   {"stitches", meshes[i].stitches.size()},
+                                   {"dressing", {{"vertices_inside", ds.vertices_inside},
+                                                 {"vertices_pushed", ds.vertices_pushed},
+                                                 {"iterations", ds.iterations},
+                                                 {"max_seam_gap_m", ds.max_seam_gap_m},
+                                                 {"alignment_rms_m", ds.alignment_rms_m}}},
                                    {"seam_gap_max_m", d.seam_gap_max_m},
                                    {"penetration_max_m", d.penetration_max_m},
                                    {"vertices_inside", d.vertices_inside},

@@ -69,7 +69,7 @@ struct SynthScene {
     int width_px = 600;
     int height_px = 900;
     Eigen::Vector3d skin_srgb{0.8, 0.74, 0.67};
-    std::vector<SynthGarment> garments;  ///< draped in this order (lower garments first)
+    std::vector<SynthGarment> garments;  ///< layered in this order (lower garments first)
 };
 
 /// Samples a scene from `options` (body, pose, sizing, material, look, camera).
@@ -80,8 +80,8 @@ SynthScene sample_synth_scene(const SynthOptions& options);
 struct SynthGarmentResult {
     std::string type;
     bool usable = false;
-    std::string drape_report;
-    double seconds = 0;
+    std::string drape_report;  ///< an outfit's garments share one drape and its report
+    double seconds = 0;        ///< of that drape
 };
 
 /// Outcome of make_synth_scene.

@@ -161,7 +161,8 @@ std::string StepSummary::brief_report() const {
 
 struct Simulator::Impl {
     ClothMesh mesh;
-    Material material;
+    std::vector<Material> materials;  // >= 1
+    std::vector<int> face_material;   // per face, index into materials
     SimulatorOptions options;
     Eigen::MatrixX3d x, v;
     Eigen::VectorXd mass;
@@ -223,8 +224,8 @@ struct Simulator::Impl {
     Impl() = default;
     // Copies carry the state, not the factorisation (used by the const forces()).
     Impl(const Impl& o)
-        : mesh(o.mesh), material(o.material), options(o.options), x(o.x), v(o.v), mass(o.mass),
-          area(o.area), pinned(o.pinned), triangles(o.triangles), hinges(o.hinges),
+        : mesh(o.mesh), materials(o.materials), face_material(o.face_material), options(o.options),
+          x(o.x), v(o.v), mass(o.mass), area(o.area), pinned(o.pinned), triangles(o.triangles), hinges(o.hinges),
           hinge_rests(o.hinge_rests), k_stretch(o.k_stretch), bend_curves(o.bend_curves),
           obstacle(o.obstacle), stitches(o.stitches), stitch_rest(o.stitch_rest),
           self_contact(o.self_contact), dof_index(o.dof_index), free_dofs(o.free_dofs) {}
@@ -239,6 +240,9 @@ struct Simulator::Impl {
         for (Eigen::Index i = 0; i < x.rows(); ++i)
             if (!pinned[static_cast<std::size_t>(i)])
                 for (int c = 0; c < 3; ++c) dof_index[static_cast<std::size_t>(3 * i + c)] = free_dofs++;
+    }
+    const Material& material_of(int face) const {
+        return materials[static_cast<std::size_t>(face_material[static_cast<std::size_t>(face)])];
     }
     int dof(int vertex, int c) const { return dof_index[static_cast<std::size_t>(3 * vertex + c)]; }
 
@@ -260,7 +264,7 @@ struct Simulator::Impl {
         k_stretch.resize(triangles.size());
         parallel_range(mesh.face_count(), [&](int f) {
             k_stretch[static_cast<std::size_t>(f)] = stretching_stiffness(
-                material, green_strain(face_positions(p, f), triangles[static_cast<std::size_t>(f)]));
+                material_of(f), green_strain(face_positions(p, f), triangles[static_cast<std::size_t>(f)]));
         });
     }
 
@@ -898,29 +902,53 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
 }
 
 Simulator::Simulator(ClothMesh mesh, Material material, SimulatorOptions options)
+    // `mesh` is copied, not moved: the face count is read in the same argument list, whose
+    // evaluation order is unspecified (the copy is negligible next to any simulation).
+    : Simulator(mesh, std::vector<Material>{std::move(material)},
+                std::vector<int>(static_cast<std::size_t>(mesh.faces.rows()), 0), std::move(options)) {}
+
+Simulator::Simulator(ClothMesh mesh, std::vector<Material> materials, std::vector<int> face_material,
+                     SimulatorOptions options)
     : impl_(std::make_unique<Impl>()) {
     std::string why;
     require(options.is_valid(&why), "Simulator: options are invalid: ", why);
-    require(material.is_valid(&why), "Simulator: material is invalid: ", why);
+    require(!materials.empty(), "Simulator: materials is empty (need at least one)");
+    for (std::size_t k = 0; k < materials.size(); ++k)
+        require(materials[k].is_valid(&why), "Simulator: material ", k, " is invalid: ", why);
     mesh.validate();
+    require(face_material.size() == static_cast<std::size_t>(mesh.face_count()),
+            "Simulator: face_material has ", face_material.size(), " entries, the mesh has ",
+            mesh.face_count(), " faces");
+    for (std::size_t f = 0; f < face_material.size(); ++f)
+        require(face_material[f] >= 0 && static_cast<std::size_t>(face_material[f]) < materials.size(),
+                "Simulator: face_material[", f, "] = ", face_material[f], " is out of range [0, ",
+                materials.size(), ")");
     Impl& m = *impl_;
     m.mesh = std::move(mesh);
-    m.material = material;
+    m.materials = std::move(materials);
+    m.face_material = std::move(face_material);
     m.options = std::move(options);
     m.x = m.mesh.positions;
     m.v = Eigen::MatrixX3d::Zero(m.x.rows(), 3);
-    m.mass = vertex_masses(m.mesh, m.material);
-    m.area = m.mass / m.material.density_kg_per_m2;
     m.pinned.assign(static_cast<std::size_t>(m.x.rows()), false);
+    // Lumped masses and rest areas: each face gives ρ_f A_f / 3 and A_f / 3 to its corners.
+    m.mass = Eigen::VectorXd::Zero(m.x.rows());
+    m.area = Eigen::VectorXd::Zero(m.x.rows());
     for (int f = 0; f < m.mesh.face_count(); ++f) {
         Eigen::Vector2d u[3];
         for (int c = 0; c < 3; ++c) u[c] = m.mesh.pattern.row(m.mesh.pattern_faces(f, c)).transpose();
         m.triangles.push_back(triangle_rest(u[0], u[1], u[2]));
+        const double third = m.triangles.back().area_m2 / 3;
+        for (int c = 0; c < 3; ++c) {
+            m.area(m.mesh.faces(f, c)) += third;
+            m.mass(m.mesh.faces(f, c)) += m.material_of(f).density_kg_per_m2 * third;
+        }
     }
     m.hinges = build_hinges(m.mesh);
     for (const Hinge& h : m.hinges) {
         m.hinge_rests.push_back(hinge_rest(m.mesh, h));
-        m.bend_curves.push_back(bending_curve(m.material, m.hinge_rests.back()));
+        // A hinge between two materials bends with its first face's (documented in the header).
+        m.bend_curves.push_back(bending_curve(m.material_of(h.faces[0]), m.hinge_rests.back()));
     }
     m.self_contact = internal::SelfContact(m.mesh.faces, m.mesh.vertex_count());
     m.set_rest_filter();
@@ -1136,7 +1164,9 @@ void Simulator::set_velocities(const Eigen::MatrixX3d& velocities_m_per_s) {
 
 const Eigen::VectorXd& Simulator::masses() const { return impl_->mass; }
 const ClothMesh& Simulator::mesh() const { return impl_->mesh; }
-const Material& Simulator::material() const { return impl_->material; }
+const Material& Simulator::material() const { return impl_->materials.front(); }
+const std::vector<Material>& Simulator::materials() const { return impl_->materials; }
+const std::vector<int>& Simulator::face_material() const { return impl_->face_material; }
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
 
 Eigen::MatrixX3d Simulator::forces() const {

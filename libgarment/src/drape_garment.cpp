@@ -191,10 +191,27 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
                            const std::vector<Eigen::MatrixX3d>& body_path, const Eigen::MatrixX3i& body_faces,
                            const cloth::Material& material, const DrapeOptions& options,
                            Eigen::MatrixX3d& out_positions) {
+    std::string why;
+    require(material.is_valid(&why), "drape_garment: material: ", why);
+    return drape_garment(mesh, initial_positions, body_path, body_faces, std::vector<cloth::Material>{material},
+                         std::vector<int>(size_t(mesh.cloth.face_count()), 0), options, out_positions);
+}
+
+DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+                           const std::vector<Eigen::MatrixX3d>& body_path, const Eigen::MatrixX3i& body_faces,
+                           const std::vector<cloth::Material>& materials, const std::vector<int>& face_material,
+                           const DrapeOptions& options, Eigen::MatrixX3d& out_positions) {
     const auto start = std::chrono::steady_clock::now();
     std::string why;
     require(options.is_valid(&why), "drape_garment: ", why);
-    require(material.is_valid(&why), "drape_garment: material: ", why);
+    require(!materials.empty(), "drape_garment: no material given");
+    for (size_t k = 0; k < materials.size(); ++k)
+        require(materials[k].is_valid(&why), "drape_garment: material ", k, ": ", why);
+    require(face_material.size() == size_t(mesh.cloth.face_count()), "drape_garment: face_material has ",
+            face_material.size(), " entries, the garment mesh has ", mesh.cloth.face_count(), " faces");
+    for (size_t f = 0; f < face_material.size(); ++f)
+        require(face_material[f] >= 0 && size_t(face_material[f]) < materials.size(), "drape_garment: face_material[",
+                f, "] = ", face_material[f], " is out of range [0, ", materials.size(), ")");
     const int nv = mesh.cloth.vertex_count();
     require(nv > 0, "drape_garment: the garment mesh is empty");
     require(initial_positions.rows() == nv && initial_positions.allFinite(), "drape_garment: initial_positions has ",
@@ -207,7 +224,8 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
 
     cloth::ClothMesh cm = mesh.cloth;
     cm.positions = initial_positions;
-    cloth::Simulator sim(std::move(cm), material, options.simulator);
+    // Welding and the twin simulators below keep the faces, so face_material holds for all.
+    cloth::Simulator sim(std::move(cm), materials, face_material, options.simulator);
     sim.set_obstacle(cloth::Obstacle(body_path.front(), body_faces));
     sim.set_stitches(garment_stitches(mesh));
     // Garment vertex -> simulation vertex (the identity until the seams are welded).
@@ -225,6 +243,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     summary.penetration_tolerance_m = options.penetration_tolerance_m;
     summary.seam_gap_tolerance_m = options.seam_gap_tolerance_m;
     const double total_mass = sim.masses().sum();
+    summary.mass_kg = total_mass;
     {
         const cloth::ContactReport r0 = sim.contact_report();
         summary.initial_penetration_max_m = r0.max_penetration_m;
@@ -261,7 +280,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
             notes += std::string(notes.empty() ? "" : "; ") + "seams not welded (" + e.what() + ")";
             return;
         }
-        cloth::Simulator next(std::move(w.mesh), material, options.simulator);
+        cloth::Simulator next(std::move(w.mesh), materials, face_material, options.simulator);
         next.set_obstacle(*sim.obstacle());
         next.set_velocities(v);
         sim = std::move(next);
@@ -317,7 +336,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
         loose.self_contact = false;
         cloth::ClothMesh m0 = sim.mesh();
         m0.positions = initial_positions;
-        cloth::Simulator untangle(std::move(m0), material, loose);
+        cloth::Simulator untangle(std::move(m0), materials, face_material, loose);
         untangle.set_obstacle(*sim.obstacle());
         untangle.set_stitches(sim.stitches());
         while (summary.untangle_steps < options.max_untangle_steps) {
@@ -351,7 +370,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
         static_options.max_newton_iterations = options.static_max_newton_iterations;
         cloth::ClothMesh settled_mesh = sim.mesh();
         settled_mesh.positions = before;
-        cloth::Simulator twin(std::move(settled_mesh), material, static_options);
+        cloth::Simulator twin(std::move(settled_mesh), materials, face_material, static_options);
         twin.set_obstacle(*sim.obstacle());
         twin.set_stitches(sim.stitches());
         const cloth::StepSummary s = twin.solve_static();
@@ -473,9 +492,24 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
                                     const cloth::Material& material, const DressingOptions& dressing_options,
                                     const DrapeOptions& options, std::vector<Eigen::MatrixX3d>& out_positions,
                                     std::vector<DressingSummary>* dressing) {
+    return dress_and_drape_outfit(patterns, meshes, model, shaped, pose,
+                                  std::vector<cloth::Material>(meshes.size(), material), dressing_options, options,
+                                  out_positions, dressing);
+}
+
+DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
+                                    const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                                    const std::vector<cloth::Material>& materials,
+                                    const DressingOptions& dressing_options, const DrapeOptions& options,
+                                    std::vector<Eigen::MatrixX3d>& out_positions,
+                                    std::vector<DressingSummary>* dressing) {
     require(!patterns.empty() && patterns.size() == meshes.size(), "dress_and_drape_outfit: ", patterns.size(),
             " patterns and ", meshes.size(), " meshes (need the same number, >= 1)");
+    require(materials.size() == meshes.size(), "dress_and_drape_outfit: ", materials.size(), " materials for ",
+            meshes.size(), " garments (need one per garment)");
     std::string why;
+    for (size_t g = 0; g < materials.size(); ++g)
+        require(materials[g].is_valid(&why), "dress_and_drape_outfit: material of garment ", g, ": ", why);
     require(pose.is_valid(&why), "dress_and_drape_outfit: pose: ", why);
     const body::Pose rest = body::Pose::rest();
     const body::PosedSkeleton skel = body::forward_kinematics(shaped.joints, rest);
@@ -510,8 +544,13 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
     const std::vector<Eigen::MatrixX3d> path =
         at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
                 : pose_path(model, shaped, rest, pose, 11);
+    // Garment g's faces follow those of the garments before it (concatenate's order).
+    std::vector<int> face_material;
+    face_material.reserve(size_t(all.cloth.face_count()));
+    for (size_t g = 0; g < meshes.size(); ++g)
+        face_material.insert(face_material.end(), size_t(meshes[g].cloth.face_count()), int(g));
     Eigen::MatrixX3d X;
-    const DrapeSummary s = drape_garment(all, X0, path, model.faces, material, options, X);
+    const DrapeSummary s = drape_garment(all, X0, path, model.faces, materials, face_material, options, X);
     out_positions.clear();
     for (size_t g = 0; g < meshes.size(); ++g) out_positions.push_back(X.middleRows(first[g], first[g + 1] - first[g]));
     return s;

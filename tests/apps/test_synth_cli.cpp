@@ -244,6 +244,13 @@ TEST_CASE("drape synth dresses an outfit: t-shirt over pants", "[.eval][synth]")
     REQUIRE(truth["garments"].size() == 2);
     CHECK(truth["garments"][0]["type"] == "pants");
     CHECK(truth["garments"][1]["type"] == "tshirt");
+    // Dressed and draped together (garment::dress_and_drape_outfit): one simulation, whose
+    // steps both garments report; sizes stay per garment.
+    const nlohmann::json summary = read_json(dir / "summary.json");
+    REQUIRE(summary["drapes"].size() == 2);
+    CHECK(summary["drapes"][0]["steps"] == summary["drapes"][1]["steps"]);
+    CHECK(summary["drapes"][0]["self_intersections"] == summary["drapes"][1]["self_intersections"]);
+    CHECK(summary["drapes"][0]["vertices"] != summary["drapes"][1]["vertices"]);
 }
 
 TEST_CASE("drape synth makes a dress scene", "[.eval][synth]") {

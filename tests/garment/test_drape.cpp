@@ -14,6 +14,7 @@
 
 #include "test_paths.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -222,31 +223,53 @@ TEST_CASE("drape: a body path of the wrong shape is rejected", "[garment][drape]
     CHECK(why.find("body_motion_s") != std::string::npos);
 }
 
-TEST_CASE("drape: an outfit, a t-shirt over pants, dressed and draped together", "[garment][drape][outfit]") {
-    DRAPE_REQUIRE_SHARED(material_file, "materials/gray-interlock.json");
-    const cloth::Material material = cloth::load_material(material_file);
+namespace {
+
+// Pants and a t-shirt for the mean female, meshed at 4 cm edges (inner garment first).
+struct PantsAndTshirt {
     const MeanFemale f;
-    const body::BodyModel& model = f.model;
-    const body::ShapedBody& shaped = f.shaped;
-    const body::BodyMeasurements& m = f.m;
-    const std::vector<Pattern> patterns = {make_pants(propose_pants_sizing(m)), make_tshirt(propose_tshirt_sizing(m))};
-    std::vector<GarmentMesh> meshes(2);
-    MeshOptions mo;
-    mo.target_edge_cm = 4.0;
-    for (size_t g = 0; g < 2; ++g) REQUIRE(mesh_pattern(patterns[g], mo, meshes[g]).usable());
+    std::vector<Pattern> patterns;
+    std::vector<GarmentMesh> meshes = std::vector<GarmentMesh>(2);
+    PantsAndTshirt()
+        : patterns{make_pants(propose_pants_sizing(f.m)), make_tshirt(propose_tshirt_sizing(f.m))} {
+        MeshOptions mo;
+        mo.target_edge_cm = 4.0;
+        for (size_t g = 0; g < 2; ++g) REQUIRE(mesh_pattern(patterns[g], mo, meshes[g]).usable());
+    }
+};
+
+// Rest (pattern) area of a garment in m².
+double pattern_area(const GarmentMesh& mesh) {
+    const cloth::ClothMesh& c = mesh.cloth;
+    double area = 0;
+    for (Eigen::Index f = 0; f < c.pattern_faces.rows(); ++f) {
+        const Eigen::RowVector2d a = c.pattern.row(c.pattern_faces(f, 0));
+        const Eigen::RowVector2d d1 = c.pattern.row(c.pattern_faces(f, 1)) - a;
+        const Eigen::RowVector2d d2 = c.pattern.row(c.pattern_faces(f, 2)) - a;
+        area += 0.5 * (d1.x() * d2.y() - d1.y() * d2.x());
+    }
+    return area;
+}
+
+// Dresses and drapes the outfit in the rest pose and checks its acceptance criteria:
+// usable, each garment free of crossings and of the body with closed seams, the t-shirt over
+// the pants' waistband. `fabric`: one cloth::Material for both garments or a
+// std::vector<cloth::Material>, one per garment.
+template <class Fabric>
+DrapeSummary drape_and_check_outfit(const PantsAndTshirt& o, const Fabric& fabric) {
     std::vector<Eigen::MatrixX3d> X;
     std::vector<DressingSummary> dressed;
-    const DrapeSummary s = dress_and_drape_outfit(patterns, meshes, model, shaped, body::Pose::rest(), material,
-                                                  DressingOptions{}, DrapeOptions{}, X, &dressed);
+    const DrapeSummary s = dress_and_drape_outfit(o.patterns, o.meshes, o.f.model, o.f.shaped, body::Pose::rest(),
+                                                  fabric, DressingOptions{}, DrapeOptions{}, X, &dressed);
     INFO(s.brief_report());
     CHECK(s.usable());  // no crossing within or between the garments, no penetration
     CHECK(s.initial_self_intersections == 0);
     REQUIRE(X.size() == 2);
     REQUIRE(dressed.size() == 2);
-    const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, body::Pose::rest()).vertices;
+    const Eigen::MatrixX3d body_V = body::pose_body(o.f.model, o.f.shaped, body::Pose::rest()).vertices;
     for (size_t g = 0; g < 2; ++g) {
-        REQUIRE(X[g].rows() == meshes[g].cloth.vertex_count());
-        const GarmentStateCheck c = check_garment_state(meshes[g], X[g], body_V, model.faces);
+        REQUIRE(X[g].rows() == o.meshes[g].cloth.vertex_count());
+        const GarmentStateCheck c = check_garment_state(o.meshes[g], X[g], body_V, o.f.model.faces);
         INFO("garment " << g << ": " << c.brief_report());
         CHECK(c.self_intersections == 0);
         CHECK(c.max_penetration_m <= 1e-3);
@@ -254,7 +277,55 @@ TEST_CASE("drape: an outfit, a t-shirt over pants, dressed and draped together",
     }
     // Layered: the t-shirt hangs over the pants' waistband (its hem below the pants' top).
     CHECK(X[1].col(1).minCoeff() < X[0].col(1).maxCoeff());
-    CHECK_THROWS_AS(dress_and_drape_outfit(patterns, {meshes[0]}, model, shaped, body::Pose::rest(), material,
-                                           DressingOptions{}, DrapeOptions{}, X),
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("drape: an outfit, a t-shirt over pants, dressed and draped together", "[garment][drape][outfit]") {
+    DRAPE_REQUIRE_SHARED(material_file, "materials/gray-interlock.json");
+    const cloth::Material material = cloth::load_material(material_file);
+    const PantsAndTshirt o;
+    const DrapeSummary s = drape_and_check_outfit(o, material);
+    CHECK(s.mass_kg == Approx(material.density_kg_per_m2 * (pattern_area(o.meshes[0]) + pattern_area(o.meshes[1]))));
+    std::vector<Eigen::MatrixX3d> X;
+    CHECK_THROWS_AS(dress_and_drape_outfit(o.patterns, {o.meshes[0]}, o.f.model, o.f.shaped, body::Pose::rest(),
+                                           material, DressingOptions{}, DrapeOptions{}, X),
                     drape::InvalidInput);
+}
+
+TEST_CASE("drape: an outfit of two fabrics, gray-interlock pants and a rib-knit t-shirt", "[garment][drape][outfit]") {
+    const std::vector<cloth::Material> fabrics = {cloth::builtin_material("gray-interlock"),
+                                                  cloth::builtin_material("ivory-rib-knit")};
+    // The rib knit is denser (0.276 vs 0.187 kg/m²) and stiffer.
+    REQUIRE(fabrics[1].density_kg_per_m2 > 1.2 * fabrics[0].density_kg_per_m2);
+    const PantsAndTshirt o;
+    const DrapeSummary s = drape_and_check_outfit(o, fabrics);
+    // The simulated cloth weighs each garment's area times its own fabric's density (with
+    // the pants' fabric for both it would weigh more than 5 % less).
+    const double pants = pattern_area(o.meshes[0]), shirt = pattern_area(o.meshes[1]);
+    CHECK(s.mass_kg == Approx(fabrics[0].density_kg_per_m2 * pants + fabrics[1].density_kg_per_m2 * shirt).epsilon(1e-9));
+    CHECK(std::abs(s.mass_kg - fabrics[0].density_kg_per_m2 * (pants + shirt)) > 0.05 * s.mass_kg);
+    // Bad inputs name what is wrong.
+    std::vector<Eigen::MatrixX3d> X;
+    CHECK_THROWS_WITH(dress_and_drape_outfit(o.patterns, o.meshes, o.f.model, o.f.shaped, body::Pose::rest(),
+                                             std::vector<cloth::Material>{fabrics[0]}, DressingOptions{},
+                                             DrapeOptions{}, X),
+                      Catch::Contains("1 materials for 2 garments"));
+    cloth::Material bad = fabrics[1];
+    bad.density_kg_per_m2 = 0;
+    CHECK_THROWS_WITH(dress_and_drape_outfit(o.patterns, o.meshes, o.f.model, o.f.shaped, body::Pose::rest(),
+                                             std::vector<cloth::Material>{fabrics[0], bad}, DressingOptions{},
+                                             DrapeOptions{}, X),
+                      Catch::Contains("material of garment 1"));
+    const Eigen::MatrixX3d body_V = body::pose_body(o.f.model, o.f.shaped, body::Pose::rest()).vertices;
+    Eigen::MatrixX3d Y;
+    CHECK_THROWS_WITH(drape_garment(o.meshes[0], o.meshes[0].cloth.positions, std::vector<Eigen::MatrixX3d>{body_V},
+                                    o.f.model.faces, fabrics, std::vector<int>(3, 0), DrapeOptions{}, Y),
+                      Catch::Contains("face_material has 3 entries"));
+    std::vector<int> out_of_range(size_t(o.meshes[0].cloth.face_count()), 0);
+    out_of_range[5] = 2;
+    CHECK_THROWS_WITH(drape_garment(o.meshes[0], o.meshes[0].cloth.positions, std::vector<Eigen::MatrixX3d>{body_V},
+                                    o.f.model.faces, fabrics, out_of_range, DrapeOptions{}, Y),
+                      Catch::Contains("face_material[5] = 2"));
 }

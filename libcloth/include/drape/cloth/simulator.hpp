@@ -147,8 +147,18 @@ struct Stitch {
 /// A piece of cloth in time. Owns its state; distinct simulators may run on distinct threads.
 class Simulator {
 public:
+    /// One material for the whole mesh (delegates to the per-face constructor).
     /// \throw drape::InvalidInput if the mesh, the material or the options are invalid.
     Simulator(ClothMesh mesh, Material material, SimulatorOptions options = {});
+    /// A material per face, e.g. an outfit of several garments simulated together, one
+    /// fabric each: face f is made of materials[face_material[f]] (its stretching stiffness
+    /// and its density, which gives its corners ρ_f A_f / 3 of mass). A hinge between faces
+    /// of two materials bends with the material of its first face (Hinge::faces[0]).
+    /// \param materials at least one, each valid; \param face_material #F indices into it.
+    /// \throw drape::InvalidInput if the mesh, a material, face_material (size or an index,
+    /// naming the face) or the options are invalid.
+    Simulator(ClothMesh mesh, std::vector<Material> materials, std::vector<int> face_material,
+              SimulatorOptions options = {});
     ~Simulator();
     Simulator(Simulator&&) noexcept;
     Simulator& operator=(Simulator&&) noexcept;
@@ -197,7 +207,10 @@ public:
     void set_velocities(const Eigen::MatrixX3d& velocities_m_per_s);
     const Eigen::VectorXd& masses() const;       ///< #V, kg
     const ClothMesh& mesh() const;
+    /// The first material (the only one of a one-material simulator).
     const Material& material() const;
+    const std::vector<Material>& materials() const;  ///< as constructed, >= 1
+    const std::vector<int>& face_material() const;    ///< #F indices into materials()
     const SimulatorOptions& options() const;
 
     /// Elastic + gravity force on every vertex at the current positions (#V x 3, N), with the

@@ -99,6 +99,7 @@ struct DrapeSummary {
     bool converged = false;           ///< termination == converged
     int vertices = 0;
     int stitches = 0;
+    double mass_kg = 0;               ///< of the cloth: Σ ρ A over its faces' fabrics
     bool welded = false;              ///< the seams were welded (see DrapeOptions::weld_seams)
     int steps_to_weld = -1;           ///< step at which they were, -1: never
     int steps = 0;                    ///< dynamic steps taken (untangling included)
@@ -152,6 +153,18 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
                            const cloth::Material& material, const DrapeOptions& options,
                            Eigen::MatrixX3d& out_positions);
 
+/// The same with a fabric per face (an outfit of garments of different fabrics): face f of
+/// mesh.cloth is made of materials[face_material[f]] (cloth::Simulator's per-face
+/// constructor; a hinge between two fabrics bends as its first face's). Welding the seams
+/// keeps the faces, so face_material holds throughout.
+/// \param materials >= 1, each valid; \param face_material #F indices into materials.
+/// \throw drape::InvalidInput as above, or if a material, the size of face_material or one
+/// of its indices (named) is invalid.
+DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+                           const std::vector<Eigen::MatrixX3d>& body_path, const Eigen::MatrixX3i& body_faces,
+                           const std::vector<cloth::Material>& materials, const std::vector<int>& face_material,
+                           const DrapeOptions& options, Eigen::MatrixX3d& out_positions);
+
 /// Dresses `pattern`'s mesh on the shaped body and drapes it in `pose`: dressed in the rest
 /// A-pose (where dressing starts without crossings: docs/dressing.md), sewn there, then the
 /// body moves to `pose` over options.body_motion_s (11 interpolated poses) and the garment
@@ -163,11 +176,11 @@ DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, co
                              const DressingOptions& dressing_options, const DrapeOptions& options,
                              Eigen::MatrixX3d& out_positions, DressingSummary* dressing = nullptr);
 
-/// An outfit: several garments dressed and draped together in one simulation (one
-/// fabric), layered in the given order, inner first (e.g. pants, then a t-shirt worn over
-/// their waistband). Each garment is dressed alone in the rest A-pose; every later garment
-/// is then moved radially (about the trunk axis, so it keeps its own shape and cannot
-/// cross itself) to lie at least the contact thickness + 1 mm outside the dressed garments
+/// An outfit: several garments dressed and draped together in one simulation (here one
+/// fabric for all; the overload below takes one per garment), layered in the given order,
+/// inner first (e.g. pants, then a t-shirt worn over their waistband). Each garment is
+/// dressed alone in the rest A-pose; every later garment is then moved radially (about the
+/// trunk axis, so it keeps its own shape and cannot cross itself) to lie at least the contact thickness + 1 mm outside the dressed garments
 /// before it; the garments are sewn, welded and moved to `pose` together, their layers kept
 /// apart by self-contact.
 /// \param out_positions receives one #V_i x 3 matrix per garment.
@@ -179,6 +192,18 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
                                     const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
                                     const cloth::Material& material, const DressingOptions& dressing_options,
                                     const DrapeOptions& options, std::vector<Eigen::MatrixX3d>& out_positions,
+                                    std::vector<DressingSummary>* dressing = nullptr);
+
+/// The same with one fabric per garment: garment g is made of materials[g] (its stretching,
+/// bending and density; no hinge joins two garments, they only touch through self-contact).
+/// \param materials one per garment, in the order of `patterns`.
+/// \throw drape::InvalidInput as above, or if materials is not one per garment or one is
+/// invalid (naming the garment).
+DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
+                                    const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                                    const std::vector<cloth::Material>& materials,
+                                    const DressingOptions& dressing_options, const DrapeOptions& options,
+                                    std::vector<Eigen::MatrixX3d>& out_positions,
                                     std::vector<DressingSummary>* dressing = nullptr);
 
 }  // namespace drape::garment
