@@ -175,6 +175,7 @@ nlohmann::json drape_report(const DressArgs& args, const std::string& material_s
             {"penetration_max_m", d.penetration_max_m},
             {"vertices_inside", d.vertices_inside},
             {"self_intersections", d.self_intersections},
+            {"mean_drop_m", d.mean_drop_m},
             {"converged", d.converged},
             {"usable", d.usable()},
             {"steps", d.steps},
@@ -408,8 +409,8 @@ void run_eval_dress(const EvalDressArgs& args) {
     nlohmann::json cases = nlohmann::json::array();
     std::vector<std::pair<std::string, cv::Mat>> sheet_cells;
     std::ostringstream table;
-    table << "| garment | body | pose | vertices | seam gap mm | penetration mm | self-int. | converged | usable | steps | s |\n"
-          << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+    table << "| garment | body | pose | vertices | seam gap mm | penetration mm | self-int. | drop cm | converged | usable | steps | s |\n"
+          << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     int usable = 0, total = 0;
     double seconds_sum = 0;
     for (const EvalBody& eb : kEvalBodies) {
@@ -446,9 +447,9 @@ void run_eval_dress(const EvalDressArgs& args) {
                           << ": " << (ok ? "usable" : "NOT usable") << ", " << d.brief_report() << std::endl;
                 table << "| " << args.garments[t] << " | " << eb.name << " | " << args.poses[k] << " | " << d.vertices
                       << " | " << std::fixed << std::setprecision(2) << 1000 * c.max_seam_gap_m << " | "
-                      << 1000 * c.max_penetration_m << " | " << c.self_intersections << " | "
-                      << (d.converged ? "yes" : "no") << " | " << (ok ? "**yes**" : "no") << " | " << d.steps << " | "
-                      << std::setprecision(1) << d.seconds + dressed.seconds << " |\n";
+                      << 1000 * c.max_penetration_m << " | " << c.self_intersections << " | " << std::setprecision(1)
+                      << 100 * d.mean_drop_m << " | " << (d.converged ? "yes" : "no") << " | "
+                      << (ok ? "**yes**" : "no") << " | " << d.steps << " | " << d.seconds + dressed.seconds << " |\n";
                 table.unsetf(std::ios::floatfield);
                 cases.push_back({{"garment", args.garments[t]},
                                  {"body", eb.name},
@@ -458,6 +459,7 @@ void run_eval_dress(const EvalDressArgs& args) {
                                  {"seam_gap_max_m", c.max_seam_gap_m},
                                  {"penetration_max_m", c.max_penetration_m},
                                  {"self_intersections", c.self_intersections},
+                                 {"mean_drop_m", d.mean_drop_m},
                                  {"converged", d.converged},
                                  {"usable", ok},
                                  {"steps", d.steps},
@@ -498,12 +500,13 @@ void run_eval_dress(const EvalDressArgs& args) {
                       << d.brief_report() << std::endl;
             table << "| tshirt+pants | " << eb.name << " | " << args.poses[k] << " | " << d.vertices << " | " << std::fixed
                   << std::setprecision(2) << 1000 * d.seam_gap_max_m << " | " << 1000 * d.penetration_max_m << " | "
-                  << d.self_intersections << " | " << (d.converged ? "yes" : "no") << " | "
-                  << (d.usable() ? "**yes**" : "no") << " | " << d.steps << " | " << std::setprecision(1) << d.seconds
-                  << " |\n";
+                  << d.self_intersections << " | " << std::setprecision(1) << 100 * d.mean_drop_m << " | "
+                  << (d.converged ? "yes" : "no") << " | " << (d.usable() ? "**yes**" : "no") << " | " << d.steps
+                  << " | " << d.seconds << " |\n";
             table.unsetf(std::ios::floatfield);
             cases.push_back({{"garment", "tshirt+pants"}, {"body", eb.name}, {"pose", args.poses[k]},
-                             {"vertices", d.vertices}, {"usable", d.usable()}, {"drape", d.brief_report()},
+                             {"vertices", d.vertices}, {"mean_drop_m", d.mean_drop_m}, {"usable", d.usable()},
+                             {"drape", d.brief_report()},
                              {"seconds", d.seconds}});
             const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, poses[k]).vertices;
             sheet_cells.push_back({"tshirt+pants, " + args.poses[k],

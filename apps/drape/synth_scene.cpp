@@ -444,6 +444,7 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
                                    {"vertices_inside", d.vertices_inside},
                                    {"self_intersections", d.self_intersections},
                                    {"initial_self_intersections", d.initial_self_intersections},
+                                   {"mean_drop_m", d.mean_drop_m},
                                    {"converged", d.converged},
                                    {"usable", d.usable()},
                                    {"steps", d.steps},

@@ -66,6 +66,8 @@ bool DrapeOptions::is_valid(std::string* why) const {
         return fail("DrapeOptions::body_motion_s = " + std::to_string(body_motion_s) + " must be > 0");
     if (fallback_steps < 0)
         return fail("DrapeOptions::fallback_steps = " + std::to_string(fallback_steps) + " must be >= 0");
+    if (!(max_mean_drop_m > 0 && std::isfinite(max_mean_drop_m)))
+        return fail("DrapeOptions::max_mean_drop_m = " + std::to_string(max_mean_drop_m) + " must be > 0");
     if (!(penetration_tolerance_m > 0))
         return fail("DrapeOptions::penetration_tolerance_m = " + std::to_string(penetration_tolerance_m) +
                     " must be > 0");
@@ -81,7 +83,8 @@ std::string DrapeSummary::brief_report() const {
        << " mm, max penetration " << 1000 * penetration_max_m << " mm (" << vertices_inside
        << " vertices inside), " << self_intersections << " self-intersections, " << steps
        << " steps (seams closed at step " << steps_to_close_seams << "), static |g| " << static_gradient_n
-       << " N in " << static_newton_iterations << " iterations, " << seconds << " s";
+       << " N in " << static_newton_iterations << " iterations, mean drop " << 100 * mean_drop_m << " cm, "
+       << seconds << " s";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
 }
@@ -241,6 +244,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     summary.vertices = nv;
     summary.stitches = int(mesh.stitches.size());
     summary.penetration_tolerance_m = options.penetration_tolerance_m;
+    summary.max_mean_drop_m = options.max_mean_drop_m;
     summary.seam_gap_tolerance_m = options.seam_gap_tolerance_m;
     const double total_mass = sim.masses().sum();
     summary.mass_kg = total_mass;
@@ -405,6 +409,17 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     summary.self_intersections = r.self_intersections;
     summary.converged = summary.termination == DrapeTermination::converged;
     out_positions = garment_positions(sim.positions());
+    {
+        const Eigen::Vector3d g = options.simulator.gravity_m_per_s2;
+        const Eigen::Vector3d down = g.norm() > 0 ? Eigen::Vector3d(g.normalized()) : Eigen::Vector3d(0, -1, 0);
+        const double garment_sink = ((out_positions - initial_positions) * down).mean();
+        const double body_sink = ((body_path.back() - body_path.front()) * down).mean();
+        summary.mean_drop_m = garment_sink - body_sink;
+        if (summary.mean_drop_m > options.max_mean_drop_m)
+            notes += std::string(notes.empty() ? "" : "; ") + "the garment slid down the body: its vertices sank " +
+                     std::to_string(100 * summary.mean_drop_m) + " cm on average (at most " +
+                     std::to_string(100 * options.max_mean_drop_m) + " cm)";
+    }
     if (!notes.empty()) summary.message += (summary.message.empty() ? "" : "; ") + notes;
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;

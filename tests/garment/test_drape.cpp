@@ -130,6 +130,39 @@ TEST_CASE("drape: a skirt on the mean female in A-pose closes its seams and sett
     // garment stayed on the body (its top is at the hips, not on the floor).
     CHECK(X.col(1).maxCoeff() > 0.5 * posed.vertices.col(1).maxCoeff());
     CHECK(X.col(1).minCoeff() <= X0.col(1).minCoeff() + 0.01);
+    // The same measured as the summary's mean sink: by the definition, from X0 and X.
+    CHECK(s.mean_drop_m == Approx((X0.col(1) - X.col(1)).mean()).margin(1e-9));
+    CHECK(s.mean_drop_m < s.max_mean_drop_m);
+}
+
+// A garment that slides off the body passes the seam, penetration and crossing checks; the
+// mean sink catches it. The dressed skirt on a body shrunk to 60 % of its width (about its
+// vertical axis) hangs free and falls.
+TEST_CASE("drape: a skirt that slides off the body is not usable", "[garment][drape]") {
+    const cloth::Material material = cloth::builtin_material("gray-interlock");
+    const DressedSkirt skirt(6.0);
+    Eigen::MatrixX3d thin = skirt.posed.vertices;
+    const Eigen::RowVector3d centre = thin.colwise().mean();
+    for (Eigen::Index v = 0; v < thin.rows(); ++v) {
+        thin(v, 0) = centre(0) + 0.6 * (thin(v, 0) - centre(0));
+        thin(v, 2) = centre(2) + 0.6 * (thin(v, 2) - centre(2));
+    }
+    DrapeOptions options;
+    options.max_steps = 60;  // 0.6 s of free fall: 1.8 m
+    Eigen::MatrixX3d X;
+    const DrapeSummary s = drape_garment(skirt.mesh, skirt.X0, thin, skirt.model.faces, material, options, X);
+    INFO(s.brief_report());
+    CHECK(s.mean_drop_m > s.max_mean_drop_m);
+    CHECK(s.mean_drop_m == Approx((skirt.X0.col(1) - X.col(1)).mean()).margin(1e-9));
+    CHECK_FALSE(s.usable());
+    CHECK(s.message.find("slid down the body") != std::string::npos);
+    CHECK(s.penetration_max_m <= 1e-3);  // every other check passes
+    CHECK(s.self_intersections == 0);
+    // And the option is validated.
+    options.max_mean_drop_m = 0;
+    std::string why;
+    CHECK_FALSE(options.is_valid(&why));
+    CHECK(why.find("max_mean_drop_m") != std::string::npos);
 }
 
 TEST_CASE("drape: cancelling from the progress callback stops the simulation",
