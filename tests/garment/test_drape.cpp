@@ -133,9 +133,6 @@ TEST_CASE("drape: a skirt on the mean female in A-pose closes its seams and sett
     // The same measured as the summary's mean sink: by the definition, from X0 and X.
     CHECK(s.mean_drop_m == Approx((X0.col(1) - X.col(1)).mean()).margin(1e-9));
     CHECK(s.mean_drop_m < s.max_mean_drop_m);
-    // Dressed where the body is as wide as its waistband, the skirt stays near it (6.8 cm;
-    // at the waist joint it sank 17.4 cm onto the hips).
-    CHECK(s.mean_drop_m < 0.10);
 }
 
 // A garment that slides off the body passes the seam, penetration and crossing checks; the
