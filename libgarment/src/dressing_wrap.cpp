@@ -258,23 +258,6 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
     }
     const std::vector<Joint> torso = {Joint::pelvis, Joint::spine, Joint::chest, Joint::neck};
     const double crotch_y = waist_y + 0.01 * (pants_inseam_cm - pants_waist_cm);
-    // A skirt's waistband goes where the body is as wide as it (the girth of the torso
-    // section's ellipse reaches the waist seam's length), at the waist joint or below: a
-    // waistband looser than the body there slides down to that height anyway (the mean
-    // woman's skirt, sized from the girth at the navel plus ease, sank 17 cm onto the hips).
-    if (pattern.name == "circle_skirt") {
-        double waist_girth_m = 0;
-        for (const Panel& panel : pattern.panels)
-            if (role_of(pattern, panel.name) == Role::skirt && panel.edges.size() > 2 &&
-                panel.edges[2].kind == EdgeKind::arc)
-                waist_girth_m += 0.01 * panel.edges[2].length();
-        const double lowest_y = J(index(Joint::pelvis), 1);
-        for (double y = waist_y; waist_girth_m > 0 && y >= lowest_y; y -= 0.005) {
-            skirt_top_y = y;
-            const Eigen::Vector2d sec = torso_section(y).cwiseMax(0.02);
-            if (ellipse_perimeter(sec.x(), sec.y()) >= waist_girth_m) break;
-        }
-    }
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
         const PanelPlacement& place = pattern.placements[p];
