@@ -409,6 +409,18 @@ struct Simulator::Impl {
                 friction.push_back({c.vertex, c.normal, c.stiffness * (h - c.distance)});
     }
 
+    // Drops the lagged friction of vertices no longer within the contact thickness.
+    void drop_released_friction() {
+        if (friction.empty() || contacts.empty()) return;
+        const double h = options.contact_thickness_m;
+        std::size_t w = 0;
+        for (std::size_t k = 0; k < friction.size(); ++k) {
+            const VertexContact& c = contacts[static_cast<std::size_t>(friction[k].vertex)];
+            if (c.stiffness > 0 && c.distance < h) friction[w++] = friction[k];
+        }
+        friction.resize(w);
+    }
+
     // Largest step fraction for which no free vertex can pass through the obstacle: a point
     // at distance d from the surface cannot cross it by moving less than d, and a vertex that
     // ends up to `allowed_depth_m` inside is still on the near side of any part of the body
@@ -697,7 +709,17 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         }
         auto tc = Clock::now();
         update_obstacle_contacts(p);
-        if (it == 0) lag_friction();
+        // The obstacle friction is lagged at the step's start (contact normal and normal
+        // force); a vertex that leaves the contact layer during the step loses its friction
+        // at the next iteration. Kept, the friction of a contact that no longer exists
+        // pumps energy into vertices at the edge of the layer: a period-2 chatter that
+        // never came to rest (docs/cloth.md). Contacts made during the step get their
+        // friction at the next step, as before.
+        if (it == 0) {
+            lag_friction();
+        } else {
+            drop_released_friction();
+        }
         // Self-contact candidates within h + twice the expected motion of this iteration
         // (the last step's, or the velocity's over the step): the energy ignores pairs
         // beyond h, and the step bound below shortens any step that could bring an
