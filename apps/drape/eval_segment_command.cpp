@@ -48,6 +48,7 @@ struct EvalArgs {
     bool scale_check = false;
     std::vector<std::string> names;
     vision::SegmentationOptions options;
+    vision::GarmentOptions garment;
 };
 
 /// Photos of the folder: index.csv rows (name, category) when present, else images/*.jpg.
@@ -140,7 +141,8 @@ using Clock = std::chrono::steady_clock;
 
 nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv::Mat& gt,
                         const vision::Joints& joints, const Parse& truth,
-                        const vision::SegmentationOptions& options, ModeTotals& totals) {
+                        const vision::SegmentationOptions& options,
+                        const vision::GarmentOptions& garment_options, ModeTotals& totals) {
     const LabelTable& table = LabelTable::fashionista();
     vision::Segmentation seg;
     const auto t0 = Clock::now();
@@ -155,7 +157,7 @@ nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv:
     } else {
         summary = vision::segment_automatic(photo, joints, options, seg);
     }
-    const auto garments = vision::describe_garments(photo, seg, joints, table, vision::GarmentOptions{});
+    const auto garments = vision::describe_garments(photo, seg, joints, table, garment_options);
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const Parse pred = parse_of(seg.labels, table, joints, seg.garment_types);
     nlohmann::json per = nlohmann::json::array();
@@ -211,7 +213,7 @@ nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv:
 
 /// Wrinkle density of each hand-labelled garment at scales 0.5, 1, 2.
 nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision::Joints& joints,
-                           std::vector<double>& ratios) {
+                           const vision::GarmentOptions& garment_options, std::vector<double>& ratios) {
     const LabelTable& table = LabelTable::fashionista();
     nlohmann::json j = nlohmann::json::object();
     std::map<int, std::vector<double>> densities;
@@ -221,7 +223,7 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
         const cv::Mat img = seg.labels;
         cv::resize(gt, seg.labels, img.size(), 0, 0, cv::INTER_NEAREST);
         seg.occlusion = vision::occlusion_mask(seg.labels, table);
-        for (const auto& g : vision::describe_garments(img, seg, joints.scaled(s), table, {}))
+        for (const auto& g : vision::describe_garments(img, seg, joints.scaled(s), table, garment_options))
             densities[g.label_id].push_back(g.wrinkles.density_per_m2);
     }
     for (const auto& [id, d] : densities) {
@@ -270,7 +272,7 @@ void run_eval(const EvalArgs& args) {
             pj["warning"] = "category in index.csv differs from the labelled lower garment";
         std::cout << name << " (" << category << "):";
         for (const auto& m : modes) {
-            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, totals[m]);
+            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, args.garment, totals[m]);
             std::cout << "  " << m << " IoU " << std::fixed << std::setprecision(3)
                       << pj[m]["mean_iou"].get<double>() << " (" << std::setprecision(2)
                       << pj[m]["seconds"].get<double>() << " s)";
@@ -278,7 +280,7 @@ void run_eval(const EvalArgs& args) {
                 std::cout << " " << g["true_type"].get<std::string>() << "->"
                           << g["predicted_type"].get<std::string>();
         }
-        if (args.scale_check) pj["wrinkle_scale_check"] = scale_check(photo, gt, joints, ratios);
+        if (args.scale_check) pj["wrinkle_scale_check"] = scale_check(photo, gt, joints, args.garment, ratios);
         std::cout << "\n";
         per_photo.push_back(pj);
     }
@@ -321,6 +323,17 @@ void run_eval(const EvalArgs& args) {
     write_json_file(args.out, result);
 }
 
+/// --NAME options setting an options struct's member `name` (dashes -> underscores).
+template <size_t N>
+void add_tuning_options(CLI::App& cmd, const std::string& owner,
+                        const std::pair<const char*, double*> (&members)[N]) {
+    for (const auto& [name, member] : members) {
+        std::string member_name = name;
+        std::replace(member_name.begin(), member_name.end(), '-', '_');
+        cmd.add_option(std::string("--") + name, *member, owner + "::" + member_name + " (for tuning)");
+    }
+}
+
 }  // namespace
 
 void add_eval_segment_command(CLI::App& app) {
@@ -345,13 +358,22 @@ void add_eval_segment_command(CLI::App& app) {
         {"background-distance-factor", &o.background_distance_factor},
         {"band-fraction", &o.band_fraction},
         {"band-smoothness", &o.band_smoothness}};
-    for (const auto& [name, member] : tuning) {
-        std::string member_name = name;
-        std::replace(member_name.begin(), member_name.end(), '-', '_');
-        cmd->add_option(std::string("--") + name, *member,
-                        "SegmentationOptions::" + member_name + " (for tuning)");
-    }
-    cmd->callback([args] { run_eval(*args); });
+    add_tuning_options(*cmd, "SegmentationOptions", tuning);
+    // WrinkleOptions members exposed for tuning the fold detector with --scale-check.
+    vision::WrinkleOptions& w = args->garment.wrinkles;
+    cmd->add_option("--wrinkle-scales", w.scale_fractions,
+                    "WrinkleOptions::scale_fractions, Hessian scales / body height (for tuning)");
+    const std::pair<const char*, double*> wrinkle_tuning[] = {
+        {"ridge-threshold", &w.ridge_threshold},
+        {"working-body-height", &w.working_body_height_px},
+        {"min-edge-fraction", &w.min_edge_fraction},
+        {"full-fold-fraction", &w.full_fold_fraction}};
+    add_tuning_options(*cmd, "WrinkleOptions", wrinkle_tuning);
+    cmd->callback([args] {
+        std::string why;
+        if (!args->garment.is_valid(&why)) throw InvalidInput("wrinkle options: " + why);
+        run_eval(*args);
+    });
 }
 
 }  // namespace drape::app
