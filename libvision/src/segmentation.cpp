@@ -490,15 +490,36 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
     // A fixed 16 bins per channel, whatever histogram_bins: the 0.75 threshold on the
     // Bhattacharyya coefficient depends on the binning.
     constexpr int kDressBins = 16;
+    // Belts, sashes and waistbands sit at the natural waist (62 % shoulder -> hip, as in
+    // body_layout) and are up to ~10 cm wide: they are not the dress's fabric, so pixels
+    // within kWaistBandFraction x body height of the waist line are left out of both
+    // histograms (a gold sash between two white halves made 001630 two garments).
+    constexpr double kWaistBandFraction = 0.06;
     const cv::Mat bins = colour_bins(small, kDressBins);
-    ColourHistogram hu(kDressBins), hl(kDressBins);
-    for (size_t i = 0; i < idx.total(); ++i) {
-        if (idx.data[i] == kUpper) hu.add(bins.ptr<int>(0)[i]);
-        if (idx.data[i] == kLower) hl.add(bins.ptr<int>(0)[i]);
-    }
-    hu.finish();
-    hl.finish();
-    const double similarity = (hu.total() > 0 && hl.total() > 0) ? hu.similarity(hl) : 0.0;
+    const Joints js = joints.scaled(s);
+    const Eigen::Vector2d waist_r = js[Joint::right_shoulder] + 0.62 * (js[Joint::right_hip] - js[Joint::right_shoulder]),
+                          waist_l = js[Joint::left_shoulder] + 0.62 * (js[Joint::left_hip] - js[Joint::left_shoulder]);
+    const Eigen::Vector2d waist_dir = (waist_l - waist_r).normalized();
+    const double waist_band = kWaistBandFraction * js.body_height_px();
+    auto colour_similarity = [&](bool skip_waist) {
+        ColourHistogram hu(kDressBins), hl(kDressBins);
+        for (int y = 0; y < idx.rows; ++y)
+            for (int x = 0; x < idx.cols; ++x) {
+                const int l = idx.at<std::uint8_t>(y, x);
+                if (l != kUpper && l != kLower) continue;
+                const Eigen::Vector2d d = Eigen::Vector2d(x + 0.5, y + 0.5) - waist_r;
+                if (skip_waist && std::abs(d.x() * waist_dir.y() - d.y() * waist_dir.x()) < waist_band) continue;
+                (l == kUpper ? hu : hl).add(bins.at<int>(y, x));
+            }
+        hu.finish();
+        hl.finish();
+        return std::pair{(hu.total() > 0 && hl.total() > 0) ? hu.similarity(hl) : 0.0,
+                         std::min(hu.total(), hl.total())};
+    };
+    auto [similarity, kept] = colour_similarity(true);
+    // A part left smaller than a garment's minimum area (0.2 % of the image) outside the
+    // band: compare the whole regions.
+    if (kept < 0.002 * double(idx.total())) similarity = colour_similarity(false).first;
     bool dress = similarity > 0.75;
     if (o.hint) dress = part_of(*o.hint) == GarmentPart::full;
 
