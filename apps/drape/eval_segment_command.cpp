@@ -363,6 +363,8 @@ void add_eval_segment_command(CLI::App& app) {
     vision::WrinkleOptions& w = args->garment.wrinkles;
     cmd->add_option("--wrinkle-scales", w.scale_fractions,
                     "WrinkleOptions::scale_fractions, Hessian scales / body height (for tuning)");
+    cmd->add_option("--resolution-ensemble", w.resolution_ensemble,
+                    "WrinkleOptions::resolution_ensemble (for tuning)");
     const std::pair<const char*, double*> wrinkle_tuning[] = {
         {"ridge-threshold", &w.ridge_threshold},
         {"working-body-height", &w.working_body_height_px},

@@ -36,6 +36,7 @@ bool WrinkleOptions::is_valid(std::string* why) const {
     if (!(pair_min_overlap >= 0 && pair_min_overlap <= 1)) return fail("pair_min_overlap must be in [0, 1]");
     if (!(border_fraction >= 0)) return fail("border_fraction must be >= 0");
     if (!(full_fold_fraction >= 0)) return fail("full_fold_fraction must be >= 0");
+    if (resolution_ensemble < 1) return fail("resolution_ensemble must be >= 1");
     return true;
 }
 
@@ -190,35 +191,9 @@ FoldEdge sample(const Edge& e, double scale, const Vec& offset) {
     return f;
 }
 
-}  // namespace
-
-WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion,
-                               const Joints& joints, const WrinkleOptions& o,
-                               std::vector<Fold>* folds) {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::string why;
-    require(o.is_valid(&why), "WrinkleOptions: ", why);
-    check_image(image, CV_8UC3, "photo");
-    require(!mask.empty() && mask.type() == CV_8UC1 && mask.size() == image.size(),
-            "detect_wrinkles: the garment mask must be CV_8UC1 of the photo's size");
-    require(occlusion.empty() || (occlusion.type() == CV_8UC1 && occlusion.size() == image.size()),
-            "detect_wrinkles: the occlusion mask must be empty or CV_8UC1 of the photo's size");
-    joints.validate(image.cols, image.rows);
-    if (folds) folds->clear();
-    WrinkleSummary s;
-    const double H = joints.body_height_px();
-    const double px_per_m = H / o.person_height_m;
-    s.garment_area_px = cv::countNonZero(mask);
-    s.garment_area_m2 = s.garment_area_px / (px_per_m * px_per_m);
-    auto done = [&] {
-        s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        return s;
-    };
-    if (s.garment_area_px < 0.0005 * H * H) {
-        s.termination = WrinkleTermination::garment_too_small;
-        s.message = "garment covers fewer than 0.05 % of body height squared";
-        return done();
-    }
+/// One detection with the body resampled to Hw px: sets the edge and fold counts of `s`.
+void detect_at(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion, double H,
+               double Hw, const WrinkleOptions& o, WrinkleSummary& s, std::vector<Fold>* folds) {
     // Work inside the garment's box (margin 3 sigma), resampled so that the body is
     // working_body_height_px tall: every filter then sees the same pixel scale whatever
     // the photo's resolution (discrete derivatives bias small sigmas).
@@ -227,7 +202,7 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
     const cv::Rect box = cv::boundingRect(mask);
     const cv::Rect roi = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin,
                                   box.height + 2 * margin) & cv::Rect(0, 0, image.cols, image.rows);
-    const double f = o.working_body_height_px / H;
+    const double f = Hw / H;
     const cv::Size work_size(std::max(3, int(std::lround(roi.width * f))),
                              std::max(3, int(std::lround(roi.height * f))));
     cv::Mat gray;
@@ -237,7 +212,6 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
     cv::Mat mask_w, occ_w;
     cv::resize(mask(roi), mask_w, work_size, 0, 0, cv::INTER_NEAREST);
     if (!occlusion.empty()) cv::resize(occlusion(roi), occ_w, work_size, 0, 0, cv::INTER_NEAREST);
-    const double Hw = o.working_body_height_px;
     const Vec offset(roi.x, roi.y);
     // Multi-scale Hessian: scale-normalised sigma^2 * eigenvalues; keep the strongest.
     cv::Mat resp_bright = cv::Mat::zeros(gray.size(), CV_32F), resp_dark = resp_bright.clone();
@@ -379,6 +353,58 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
         s.fold_count += o.full_fold_fraction > 0 ? std::min(1.0, c.score / (o.full_fold_fraction * Hw)) : 1.0;
         if (folds) folds->push_back({sample(edges[c.r], f, offset), sample(edges[c.v], f, offset)});
     }
+}
+
+}  // namespace
+
+WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion,
+                               const Joints& joints, const WrinkleOptions& o,
+                               std::vector<Fold>* folds) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string why;
+    require(o.is_valid(&why), "WrinkleOptions: ", why);
+    check_image(image, CV_8UC3, "photo");
+    require(!mask.empty() && mask.type() == CV_8UC1 && mask.size() == image.size(),
+            "detect_wrinkles: the garment mask must be CV_8UC1 of the photo's size");
+    require(occlusion.empty() || (occlusion.type() == CV_8UC1 && occlusion.size() == image.size()),
+            "detect_wrinkles: the occlusion mask must be empty or CV_8UC1 of the photo's size");
+    joints.validate(image.cols, image.rows);
+    if (folds) folds->clear();
+    WrinkleSummary s;
+    const double H = joints.body_height_px();
+    const double px_per_m = H / o.person_height_m;
+    s.garment_area_px = cv::countNonZero(mask);
+    s.garment_area_m2 = s.garment_area_px / (px_per_m * px_per_m);
+    auto done = [&] {
+        s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return s;
+    };
+    if (s.garment_area_px < 0.0005 * H * H) {
+        s.termination = WrinkleTermination::garment_too_small;
+        s.message = "garment covers fewer than 0.05 % of body height squared";
+        return done();
+    }
+    // P is the mean fold count of detections at working body heights spread around
+    // working_body_height_px (resolution_ensemble of them, ±15 % geometric): one detection
+    // is a threshold-laden function of the sampling grid (hysteresis, thinning, splitting,
+    // merging, pairing), so a fold near a threshold comes and goes when the photo is
+    // resampled; averaging over grids measures P, not one grid's luck.
+    const int n = o.resolution_ensemble;
+    double count_sum = 0;
+    for (int k = 0; k < n; ++k) {
+        const double t = n > 1 ? 2.0 * k / (n - 1) - 1.0 : 0.0;
+        WrinkleSummary sk;
+        const bool nominal = (n % 2 == 1) ? 2 * k == n - 1 : k == n / 2;
+        detect_at(image, mask, occlusion, H, o.working_body_height_px * std::pow(1.15, t), o, sk,
+                  nominal ? folds : nullptr);
+        count_sum += sk.fold_count;
+        if (nominal) {
+            s.edges_detected = sk.edges_detected;
+            s.edges_merged = sk.edges_merged;
+            s.folds = sk.folds;
+        }
+    }
+    s.fold_count = count_sum / n;
     s.density_per_m2 = s.garment_area_m2 > 0 ? s.fold_count / s.garment_area_m2 : 0.0;
     s.termination = WrinkleTermination::ok;
     return done();

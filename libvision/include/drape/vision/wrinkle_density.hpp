@@ -40,6 +40,10 @@ struct WrinkleOptions {
     /// A fold whose ridge/valley overlap is at least this x body height counts as one fold
     /// in P; shorter folds count in proportion to their length (0 = every fold counts 1).
     double full_fold_fraction = 0.1;
+    /// Number of detections averaged into P, at working body heights spread geometrically
+    /// over working_body_height_px x 1.15^[-1, 1] (1 = a single detection). One detection
+    /// depends on the sampling grid through its thresholds; the mean does much less.
+    int resolution_ensemble = 5;  ///< >= 1
 
     bool is_valid(std::string* why = nullptr) const;
 };
