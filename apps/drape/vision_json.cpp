@@ -42,7 +42,8 @@ nlohmann::json cues_json(const vision::GarmentShapeCues& c) {
             {"hem_fraction", c.hem_fraction},
             {"top_fraction", c.top_fraction},
             {"between_legs_fraction", c.between_legs_fraction},
-            {"leg_fraction", c.leg_fraction}};
+            {"leg_fraction", c.leg_fraction},
+            {"knee_width_ratio", c.knee_width_ratio}};
 }
 
 nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,

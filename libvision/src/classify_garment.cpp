@@ -159,6 +159,21 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j) {
     const double legs = 0.5 * (walk(Joint::right_hip, Joint::right_knee, Joint::right_ankle) +
                                walk(Joint::left_hip, Joint::left_knee, Joint::left_ankle));
     c.leg_fraction = (legs - hip_y) / std::max(1.0, ankle_y - hip_y);
+    // Width at the knee row over the widest row of the upper thighs (20-40 % of hip -> knee,
+    // below where a top hanging over the hips or hands in pockets hide the garment's
+    // sides), each width a mean over +-1 % H of rows.
+    const double knee_y = j.mid_knee().y();
+    const int band = std::max(1, int(std::lround(0.01 * H)));
+    auto mean_width = [&](double yc) {
+        double sum = 0;
+        int n = 0;
+        for (int y = int(yc) - band; y <= int(yc) + band; ++y, ++n) sum += row_width(mask, y);
+        return sum / std::max(1, n);
+    };
+    double thigh_width = 0;
+    for (double y = hip_y + 0.2 * (knee_y - hip_y); y <= hip_y + 0.4 * (knee_y - hip_y); y += 1.0)
+        thigh_width = std::max(thigh_width, mean_width(y));
+    c.knee_width_ratio = thigh_width > 0 ? mean_width(knee_y) / thigh_width : 0.0;
     return c;
 }
 
@@ -173,7 +188,13 @@ GarmentType classify_lower(const GarmentShapeCues& c) {
     // tell them from a maxi skirt (a known confusion, docs/vision.md). "Long" also needs
     // the garment to run down the legs to near the knees: a garment whose lowest pixels
     // reach the ankles only through pieces below bare legs (boots) is short.
-    if (c.hem_fraction >= 0.75 && c.leg_fraction >= 0.4) return GarmentType::pants;
+    if (c.hem_fraction >= 0.75 && c.leg_fraction >= 0.4) {
+        // ... unless it widens from the thighs to the knees: trouser legs follow the legs,
+        // which narrow from thigh to knee (two knees side by side are ~0.7-0.8 of the two
+        // thighs' width; straight and wide-leg cuts stay near 1), while a skirt hangs from
+        // the hips and keeps or gains width downwards. 1.1: wider at the knees by 10 %.
+        return c.knee_width_ratio > 1.1 ? GarmentType::skirt : GarmentType::pants;
+    }
     if (c.between_legs_fraction < 0.5) return GarmentType::shorts;
     // Standing legs touch, so short garments rarely show a crotch gap: a hem above
     // mid-thigh (0.25 of hips -> ankles, i.e. about 20 cm below the hip joints) is the

@@ -156,3 +156,28 @@ TEST_CASE("wrinkle density averaged over working resolutions is stable under res
         }
     }
 }
+
+TEST_CASE("automatic garment types of a maxi skirt and a belted dress", "[vision][photos][classify]") {
+    // 002149: a yellow maxi skirt reaching the feet (read as pants before the knee-width
+    // cue); 001630: a white dress with a gold sash at the waist (two garments before the
+    // waist band was left out of the dress test).
+    const std::pair<const char*, GarmentType> cases[] = {{"fashionista_002149", GarmentType::skirt},
+                                                         {"fashionista_001630", GarmentType::dress}};
+    for (const auto& [name, expected] : cases) {
+        Photo p;
+        if (!load_photo(name, p)) {
+            WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
+            return;
+        }
+        Segmentation seg;
+        const SegmentationSummary s = segment_automatic(p.image, p.joints, {}, seg);
+        INFO(name << ": " << s.brief_report());
+        REQUIRE(s.usable());
+        const GarmentPart part = part_of(expected);
+        std::vector<GarmentType> types;
+        for (const auto& [id, t] : seg.garment_types)
+            if (part_of(t) == part || part_of(t) == GarmentPart::full) types.push_back(t);
+        REQUIRE(types.size() == 1);
+        CHECK(types[0] == expected);
+    }
+}

@@ -112,3 +112,32 @@ TEST_CASE("lower-garment length is the continuous run down the legs", "[vision][
     CHECK(kc.leg_fraction > 0.3);
     CHECK(classify_lower(kc) == GarmentType::skirt);
 }
+
+TEST_CASE("a long garment that widens from the thighs to the knees is a skirt", "[vision][garments][classify]") {
+    const test::SyntheticFigure pants = test::make_figure(test::Bottom::pants);
+    const GarmentShapeCues pc = measure_shape_cues(pants.labels == 31, pants.joints);
+    // Two 24 px legs at the knees under a 76 px wide top: the legs narrow downwards.
+    CHECK(pc.knee_width_ratio == Approx(48.0 / 76.0).margin(0.05));
+    CHECK(classify_lower(pc) == GarmentType::pants);
+    // A maxi skirt flaring from 64 px at the waist to 120 px at the ankles (hips 305, knees
+    // 430, ankles 545): 95 px at the knees over 79 px at the thighs.
+    cv::Mat maxi = cv::Mat::zeros(pants.labels.size(), CV_8UC1);
+    const cv::Point flared[4] = {{168, 290}, {232, 290}, {260, 540}, {140, 540}};
+    cv::fillConvexPoly(maxi, flared, 4, cv::Scalar(255));
+    const GarmentShapeCues mc = measure_shape_cues(maxi, pants.joints);
+    CHECK(mc.hem_fraction > 0.9);
+    CHECK(mc.leg_fraction > 0.9);
+    CHECK(mc.knee_width_ratio > 1.15);
+    CHECK(classify_lower(mc) == GarmentType::skirt);
+    // A straight tube to the ankles has the silhouette of wide-leg trousers with touching
+    // legs: pants (the known confusion of straight maxi skirts, docs/vision.md).
+    cv::Mat tube = cv::Mat::zeros(pants.labels.size(), CV_8UC1);
+    cv::rectangle(tube, cv::Point(166, 290), cv::Point(234, 540), cv::Scalar(255), cv::FILLED);
+    const GarmentShapeCues tc = measure_shape_cues(tube, pants.joints);
+    CHECK(tc.knee_width_ratio == Approx(1.0).margin(0.02));
+    CHECK(classify_lower(tc) == GarmentType::pants);
+    // A garment ending above the knees has no knee width.
+    cv::Mat mini = maxi.clone();
+    mini.rowRange(380, mini.rows).setTo(0);
+    CHECK(measure_shape_cues(mini, pants.joints).knee_width_ratio == 0);
+}

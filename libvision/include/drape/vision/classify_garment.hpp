@@ -29,6 +29,11 @@ struct GarmentShapeCues {
     /// Unlike hem_fraction it ignores garment pieces below a stretch of bare leg (boots,
     /// shadows or bag pixels merged into the garment).
     double leg_fraction = 0;
+    /// Garment pixels per row at the knee row over the widest row of the upper thighs
+    /// (20-40 % of hip -> knee), each averaged over +-1 % of the body height of rows:
+    /// ~0.5-0.8 for trousers (legs narrow from thigh to knee), >= 1 for a skirt that
+    /// reaches the knees. 0 when the garment does not reach the knee row.
+    double knee_width_ratio = 0;
 };
 
 /// Measures the cues of a garment mask (CV_8UC1, non-zero = garment); connected pieces
@@ -37,10 +42,11 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& mask, const Joints& joints);
 
 /// Upper garment: tank top if sleeve_fraction < 0.12, long-sleeve top if >= 0.6, else t-shirt.
 GarmentType classify_upper(const GarmentShapeCues& cues);
-/// Lower garment: pants if hem_fraction >= 0.75 and leg_fraction >= 0.4 (long, and reaching
-/// at least near the knees without a gap); otherwise shorts if between_legs_fraction < 0.5
+/// Lower garment: a long garment (hem_fraction >= 0.75 and leg_fraction >= 0.4: long, and
+/// reaching at least near the knees without a gap) is a skirt if knee_width_ratio > 1.1
+/// (wider at the knees than at the thighs), else pants; otherwise shorts if between_legs_fraction < 0.5
 /// (two legs) or leg_fraction < 0.25 (the hem ends above mid-thigh, the range of shorts),
-/// else skirt. Maxi skirts are reported as pants (docs/vision.md).
+/// else skirt. Straight (pencil) maxi skirts are reported as pants (docs/vision.md).
 GarmentType classify_lower(const GarmentShapeCues& cues);
 
 }  // namespace drape::vision
