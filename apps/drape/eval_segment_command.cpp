@@ -216,7 +216,7 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
                            const vision::GarmentOptions& garment_options, std::vector<double>& ratios) {
     const LabelTable& table = LabelTable::fashionista();
     nlohmann::json j = nlohmann::json::object();
-    std::map<int, std::vector<double>> densities;
+    std::map<int, std::vector<double>> densities, counts;
     for (double s : {1.0, 0.5, 2.0}) {
         vision::Segmentation seg;
         cv::resize(photo, seg.labels, cv::Size(), s, s, s < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
@@ -224,11 +224,16 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
         cv::resize(gt, seg.labels, img.size(), 0, 0, cv::INTER_NEAREST);
         seg.occlusion = vision::occlusion_mask(seg.labels, table);
         for (const auto& g : vision::describe_garments(img, seg, joints.scaled(s), table, garment_options))
+        {
             densities[g.label_id].push_back(g.wrinkles.density_per_m2);
+            counts[g.label_id].push_back(g.wrinkles.fold_count);
+        }
     }
     for (const auto& [id, d] : densities) {
         if (d.size() != 3) continue;
-        j[table.name(id)] = {{"P_x1", d[0]}, {"P_x0.5", d[1]}, {"P_x2", d[2]}};
+        const auto& n = counts[id];
+        j[table.name(id)] = {{"P_x1", d[0]}, {"P_x0.5", d[1]}, {"P_x2", d[2]},
+                             {"folds_x1", n[0]}, {"folds_x0.5", n[1]}, {"folds_x2", n[2]}};
         if (d[0] > 0) {
             ratios.push_back(d[1] / d[0]);
             ratios.push_back(d[2] / d[0]);
