@@ -65,10 +65,12 @@ enum class WrinkleTermination { ok, garment_too_small, failed };
 struct WrinkleSummary {
     WrinkleTermination termination = WrinkleTermination::failed;
     std::string message;
+    // edges_detected, edges_merged, folds and the folds returned: the detection at
+    // working_body_height_px; fold_count and P: the mean over the resolution ensemble.
     int edges_detected = 0;       ///< after quadric fitting and the length filter
     int edges_merged = 0;         ///< after merging
     int folds = 0;                ///< paired folds found
-    double fold_count = 0;        ///< folds weighted by length (WrinkleOptions::full_fold_fraction)
+    double fold_count = 0;        ///< folds weighted by length (WrinkleOptions::full_fold_fraction), ensemble mean
     double garment_area_px = 0;
     double garment_area_m2 = 0;
     double density_per_m2 = 0;    ///< P = fold_count / garment_area_m2
