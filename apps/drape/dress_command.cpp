@@ -17,6 +17,7 @@
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
 #include <drape/garment/drape_garment.hpp>
+#include <drape/garment/eval_bodies.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern_dxf.hpp>
@@ -380,20 +381,8 @@ struct EvalDressArgs {
     std::string out;
 };
 
-/// The evaluation bodies: 5th percentile, median and 95th percentile of stature and of body
-/// mass of the ANSUR II women (1,986 records) and the 5th and 95th of the men (4,082), the
-/// other measurements completed by the shape prior.
-struct EvalBody {
-    const char* name;
-    body::Gender gender;
-    double height_m;
-    double weight_kg;
-};
-constexpr EvalBody kEvalBodies[] = {{"female_p5", body::Gender::female, 1.525, 51.3},
-                                    {"female_p50", body::Gender::female, 1.626, 66.8},
-                                    {"female_p95", body::Gender::female, 1.740, 87.0},
-                                    {"male_p5", body::Gender::male, 1.648, 64.4},
-                                    {"male_p95", body::Gender::male, 1.870, 110.6}};
+using garment::EvalBody;
+using garment::kEvalBodies;
 
 void run_eval_dress(const EvalDressArgs& args) {
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");

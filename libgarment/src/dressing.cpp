@@ -468,6 +468,7 @@ bool DressingOptions::is_valid(std::string* why) const {
         return fail("DressingOptions::max_iterations = " + std::to_string(max_iterations) + " must be >= 1");
     if (!(constraint_weight > 0))
         return fail("DressingOptions::constraint_weight = " + std::to_string(constraint_weight) + " must be > 0");
+    if (std::string u; !untangle_options.is_valid(&u)) return fail("DressingOptions::" + u);
     return true;
 }
 
@@ -478,7 +479,7 @@ std::string DressingSummary::brief_report() const {
        << " round(s), max seam gap " << 100 * max_seam_gap_m << " cm (" << 100 * wrapped_seam_gap_m
        << " cm before push-out), " << self_intersections << " self-intersections, penetration "
        << 1000 * max_penetration_m << " mm, min layer distance " << 1000 * min_layer_distance_m
-       << " mm, alignment rms "
+       << " mm (" << untangle.initial_self_intersections << " before untangling), alignment rms "
        << alignment_rms_m << " m, " << seconds << " s";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
@@ -733,6 +734,24 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
         projected.row(ids[k]) = x.transpose();
     }
     guarded_moves(mesh, projected, X);
+    // 5. Crossings that wrapping and the push-out left (folds at the neck and shoulders,
+    //    sleeves at the armpit) are separated, each side towards its own layer.
+    //    Vertices the crossings held inside the body are then pushed out (guarded moves
+    //    count crossings at a vertex's own position, not at its stitched group's, so a
+    //    sleeve cap can cross again: a second untangling follows).
+    if (options.untangle) {
+        summary.untangle = untangle_garment(mesh, body_v, model.faces, options.untangle_options, X);
+        offenders(&ids, &targets);
+        if (!ids.empty()) {
+            Eigen::MatrixX3d out = X;
+            for (size_t k = 0; k < ids.size(); ++k) out.row(ids[k]) = targets.row(Eigen::Index(k));
+            guarded_moves(mesh, out, X);
+            const UntangleSummary again = untangle_garment(mesh, body_v, model.faces, options.untangle_options, X);
+            summary.untangle.self_intersections = again.self_intersections;
+            summary.untangle.iterations += again.iterations;
+            summary.untangle.seconds += again.seconds;
+        }
+    }
     summary.vertices_pushed = int(std::count(ever.begin(), ever.end(), true));
     const std::vector<bool> in = inside_test.inside(X);
     summary.vertices_inside = int(std::count(in.begin(), in.end(), true));

@@ -9,6 +9,7 @@
 #include <drape/body/pose.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern.hpp>
+#include <drape/garment/untangle.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -22,6 +23,9 @@ struct DressingOptions {
     double clearance_m = 0.008;       ///< garment-body gap enforced, (0, 0.1] m
     int max_iterations = 15;          ///< push-out + ARAP rounds, >= 1
     double constraint_weight = 50.0;  ///< weight of the push targets in the ARAP solve, > 0
+    /// Last step: crossings left by wrapping and push-out are separated (untangle_garment).
+    bool untangle = true;
+    UntangleOptions untangle_options;
     bool is_valid(std::string* why = nullptr) const;
 };
 
@@ -39,6 +43,7 @@ struct DressingSummary {
     int self_intersections = 0;   ///< dressed state, as check_garment_state counts them
     double max_penetration_m = 0; ///< dressed state: deepest vertex inside the posed body
     double min_layer_distance_m = 0;  ///< dressed state: see GarmentStateCheck
+    UntangleSummary untangle;     ///< the last step (crossings before and after it)
     double seconds = 0;
     bool usable() const { return vertices_inside == 0; }
     std::string brief_report() const;
