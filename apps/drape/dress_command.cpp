@@ -224,7 +224,7 @@ void run_dress(const DressArgs& args) {
         body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
     const body::PosedBody posed = body::pose_body(model, shaped, pose);
-    const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, shape.measured) : given;
+    const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, model, shaped, shape.measured) : given;
     const garment::Pattern pattern = make_pattern(sizing);
 
     const fs::path dir = make_output_folder(args.out);
@@ -317,7 +317,7 @@ void run_dress_outfit(const DressArgs& args) {
     for (GarmentType t : types) {
         const std::string name = garment_type_name(t);
         sizings.push_back(groups.contains(name) ? sizing_from_json(t, groups[name], args.sizing + " (" + name + ")")
-                                                : proposed_sizing(t, shape.measured));
+                                                : proposed_sizing(t, model, shaped, shape.measured));
         patterns.push_back(make_pattern(sizings.back()));
     }
 
@@ -411,7 +411,7 @@ void run_eval_dress(const EvalDressArgs& args) {
         const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
         if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping " + std::string(eb.name) + " failed: " + shape.brief_report());
         for (size_t t = 0; t < types.size(); ++t) {
-            const GarmentSizing sizing = proposed_sizing(types[t], shape.measured);
+            const GarmentSizing sizing = proposed_sizing(types[t], model, shaped, shape.measured);
             const garment::Pattern pattern = make_pattern(sizing);
             garment::MeshOptions mesh_options;
             mesh_options.target_edge_cm = args.edge_cm;
@@ -473,8 +473,8 @@ void run_eval_dress(const EvalDressArgs& args) {
         body::ShapedBody shaped;
         const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
         if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping failed: " + shape.brief_report());
-        const std::vector<garment::Pattern> patterns = {make_pattern(proposed_sizing(GarmentType::pants, shape.measured)),
-                                                        make_pattern(proposed_sizing(GarmentType::tshirt, shape.measured))};
+        const std::vector<garment::Pattern> patterns = {make_pattern(proposed_sizing(GarmentType::pants, model, shaped, shape.measured)),
+                                                        make_pattern(proposed_sizing(GarmentType::tshirt, model, shaped, shape.measured))};
         std::vector<garment::GarmentMesh> meshes(2);
         garment::MeshOptions mesh_options;
         mesh_options.target_edge_cm = args.edge_cm;

@@ -113,6 +113,14 @@ GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& me
     return g;
 }
 
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
+                              const body::BodyMeasurements& measured) {
+    GarmentSizing g = proposed_sizing(type, measured);
+    if (type == GarmentType::skirt)
+        g.skirt = garment::propose_skirt_sizing(measured, garment::skirt_waistband(model, shaped).girth_m);
+    return g;
+}
+
 void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,
                        const garment::GarmentMesh& m, const Eigen::MatrixX3d& positions,
                        const std::string& what) {

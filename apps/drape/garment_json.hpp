@@ -3,6 +3,7 @@
 // h2, l1}; dress {"bodice": {tshirt keys}, "skirt": {skirt keys}}. Centimetres, degrees.
 #pragma once
 
+#include <drape/body/body_model.hpp>
 #include <drape/body/measurements.hpp>
 #include <drape/garment/dress.hpp>
 #include <drape/garment/garment_mesh.hpp>
@@ -41,6 +42,10 @@ nlohmann::json to_json(const GarmentSizing& sizing);
 
 /// The sizing each template proposes for a body (garment::propose_*_sizing).
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured);
+/// The same, but a skirt's waist from the girth where its waistband sits on `shaped`
+/// (garment::skirt_waistband) plus the skirt waist ease.
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
+                              const body::BodyMeasurements& measured);
 
 /// A garment mesh as OBJ: `v` = positions (#V x 3, metres: the draped garment, or the flat
 /// layout (u, v, 0)), `vt` = pattern uv, one group per panel; `what` goes in the header.

@@ -44,7 +44,7 @@ GarmentSizing auto_sizing(GarmentType type, const std::string& body_file) {
     const body::ShapeSummary s =
         body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!s.usable()) throw std::runtime_error("drape pattern: body shaping failed: " + s.brief_report());
-    return proposed_sizing(type, s.measured);
+    return proposed_sizing(type, model, shaped, s.measured);
 }
 
 void run_pattern(const PatternArgs& args) {

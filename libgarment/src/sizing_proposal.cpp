@@ -1,5 +1,6 @@
 #include <drape/garment/sizing_proposal.hpp>
 
+#include <drape/body/skeleton.hpp>
 #include <drape/core/errors.hpp>
 
 #include <algorithm>
@@ -63,6 +64,31 @@ bool Ease::is_valid(std::string* why) const {
 SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, const Ease& ease) {
     check_measurements(m, ease);
     return skirt_for_waist((cm(m.waist_girth_m) + ease.waist_cm) / 2, cm(m.height_m));
+}
+
+SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedBody& shaped) {
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
+            "skirt_waistband: the shaped body does not fit the model");
+    const Eigen::Vector3d spine = shaped.joints.row(body::index(body::Joint::spine)).transpose();
+    const Eigen::Vector3d pelvis = shaped.joints.row(body::index(body::Joint::pelvis)).transpose();
+    const int steps = std::max(1, int(std::ceil((spine.y() - pelvis.y()) / 0.01)));
+    SkirtWaistband band;
+    for (int k = 0; k <= steps; ++k) {
+        const Eigen::Vector3d p = spine + (pelvis - spine) * double(k) / steps;
+        const double g = body::section_girth(shaped.vertices, model.faces, p, Eigen::Vector3d::UnitY());
+        if (g > 0 && (band.girth_m == 0 || g < band.girth_m)) band.girth_m = g, band.height_m = p.y();
+    }
+    require(band.girth_m > 0, "skirt_waistband: no trunk section between the spine and pelvis joints");
+    return band;
+}
+
+SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, double waistband_girth_m, double ease_cm) {
+    Ease ease;
+    ease.waist_cm = ease_cm;
+    check_measurements(m, ease);
+    require(std::isfinite(waistband_girth_m) && waistband_girth_m > 0, "propose_skirt_sizing: waistband_girth_m = ",
+            waistband_girth_m, " must be positive");
+    return skirt_for_waist((cm(waistband_girth_m) + ease_cm) / 2, cm(m.height_m));
 }
 
 PantsSizing propose_pants_sizing(const body::BodyMeasurements& m, const Ease& ease) {

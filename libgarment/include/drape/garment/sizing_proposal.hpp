@@ -1,6 +1,7 @@
 // Starting sizing parameters G from body measurements plus ease.
 #pragma once
 
+#include <drape/body/body_model.hpp>
 #include <drape/body/measurements.hpp>
 #include <drape/garment/circle_skirt.hpp>
 #include <drape/garment/dress.hpp>
@@ -29,5 +30,27 @@ SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, const Ease& ea
 PantsSizing propose_pants_sizing(const body::BodyMeasurements& m, const Ease& ease = {});
 TShirtSizing propose_tshirt_sizing(const body::BodyMeasurements& m, const Ease& ease = {});
 DressSizing propose_dress_sizing(const body::BodyMeasurements& m, const Ease& ease = {});
+
+/// A pattern maker's skirt waist ease (cm): a waistband this much longer than the body
+/// where it sits holds on the body.
+constexpr double kSkirtWaistEaseCm = 1.5;
+
+/// Where a skirt's waistband holds on the rest body: the smallest girth of the trunk
+/// (body::section_girth of horizontal sections, 1 cm apart) between the spine joint and the
+/// pelvis joint, and its height. On a body whose belly is wider than its hips the navel
+/// girth is the widest section there, and a skirt sized from it slides off.
+struct SkirtWaistband {
+    double girth_m = 0;
+    double height_m = 0;  ///< rest frame (y of the body's rest vertices), metres
+};
+/// \throw drape::InvalidInput if `shaped` does not fit the model.
+SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedBody& shaped);
+
+/// A skirt whose waist is `waistband_girth_m` (skirt_waistband) plus `ease_cm`;
+/// its length from the stature in `m`.
+/// 	hrow drape::InvalidInput if the measurements or the girth are not positive or the ease
+///        is not in [0, 60] cm.
+SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, double waistband_girth_m,
+                                 double ease_cm = kSkirtWaistEaseCm);
 
 }  // namespace drape::garment
