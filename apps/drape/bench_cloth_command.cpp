@@ -33,6 +33,7 @@ struct BenchClothArgs {
     std::string material = "gray-interlock";
     int threads = 0;
     int max_newton = 0;    // 0: the scene's default
+    int max_nonconvex = -1;  // -1: the scene's default
     double tolerance = 0;  // 0: the scene's default
     std::string out;
     bool json = false;
@@ -54,24 +55,34 @@ void run_bench_cloth(const BenchClothArgs& args) {
 
     require(args.max_newton >= 0 && args.max_newton <= 1000, "drape bench-cloth: --max-newton ",
             args.max_newton, " must be in [1, 1000]");
+    require(args.max_nonconvex >= -1 && args.max_nonconvex <= 1000, "drape bench-cloth: --max-nonconvex ",
+            args.max_nonconvex, " must be in [0, 1000]");
     require(std::isfinite(args.tolerance) && args.tolerance >= 0, "drape bench-cloth: --step-tolerance ",
             args.tolerance, " must be > 0");
     cloth::AnchorScene scene = cloth::make_anchor_scene(args.grid);
     if (args.max_newton > 0) scene.options.max_newton_iterations = args.max_newton;
     if (args.tolerance > 0) scene.options.step_relative_tolerance = args.tolerance;
+    if (args.max_nonconvex >= 0) scene.options.max_nonconvex_step_iterations = args.max_nonconvex;
     cloth::Simulator sim(scene.cloth, load_material_arg(args.material, ""), scene.options);
     sim.set_obstacle(cloth::Obstacle(scene.sphere.positions, scene.sphere.faces));
     const double dt = scene.options.time_step_s;
     const int steps = args.steps >= 1 ? args.steps : std::max(1, static_cast<int>(std::lround(args.seconds / dt)));
-    int failed = 0, iterations = 0, refactorisations = 0;
+    int slowest_step = 0;
+    std::string slowest_report;
+    int failed = 0, iterations = 0, refactorisations = 0, factorisations = 0;
     double slowest = 0, assembly = 0, solve = 0, contact = 0;
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < steps; ++k) {
         const cloth::StepSummary s = sim.step();
         iterations += s.newton_iterations;
         refactorisations += s.regularised_factorisations;
+        factorisations += s.factorisations;
         failed += s.usable() ? 0 : 1;
-        slowest = std::max(slowest, s.seconds_total);
+        if (s.seconds_total > slowest) {
+            slowest = s.seconds_total;
+            slowest_step = k;
+            slowest_report = s.brief_report();
+        }
         assembly += s.seconds_assembly;
         solve += s.seconds_solve;
         contact += s.seconds_contact;
@@ -98,9 +109,12 @@ void run_bench_cloth(const BenchClothArgs& args) {
     j["ms_solve_per_step"] = 1e3 * solve / steps;
     j["ms_contact_per_step"] = 1e3 * contact / steps;
     j["slowest_step_ms"] = 1e3 * slowest;
+    j["slowest_step"] = slowest_step;
     j["newton_iterations_per_step"] = static_cast<double>(iterations) / steps;
     j["regularised_factorisations_per_step"] = static_cast<double>(refactorisations) / steps;
+    j["factorisations_per_step"] = static_cast<double>(factorisations) / steps;
     j["failed_steps"] = failed;
+    j["max_nonconvex_step_iterations"] = scene.options.max_nonconvex_step_iterations;
     j["centre_z_m"] = sim.positions()(scene.centre_vertex, 2);
     j["min_z_m"] = sim.positions().col(2).minCoeff();
     j["max_penetration_m"] = report.max_penetration_m;
@@ -124,6 +138,9 @@ void run_bench_cloth(const BenchClothArgs& args) {
                 std::max(0.0, ms - 1e3 * (assembly + solve + contact) / steps),
                 static_cast<double>(iterations) / steps, static_cast<double>(refactorisations) / steps,
                 1e3 * slowest, failed);
+    std::printf("  %.2f Cholesky factorisations per step\n", static_cast<double>(factorisations) / steps);
+    std::printf("  slowest: step %d (t = %.3f s), %s\n", slowest_step, (slowest_step + 1) * dt,
+                slowest_report.c_str());
     std::printf("  centre z %.5f m, lowest z %.4f m, max penetration %.2f mm, %d self-intersections\n",
                 j["centre_z_m"].get<double>(), j["min_z_m"].get<double>(), report.max_penetration_m * 1e3,
                 report.self_intersections);
@@ -148,6 +165,9 @@ void add_bench_cloth_command(CLI::App& app) {
     cmd->add_option("--material", args->material, "built-in fabric name or material file");
     cmd->add_option("--threads", args->threads, "worker threads (0 = all cores)");
     cmd->add_option("--max-newton", args->max_newton, "Newton iterations per step at most (default 100)");
+    cmd->add_option("--max-nonconvex", args->max_nonconvex,
+                    "end a step after this many regularised (not convex) Newton iterations, 0 = never "
+                    "(default 4)");
     cmd->add_option("--step-tolerance", args->tolerance,
                     "Newton tolerance of a step relative to the largest vertex weight (default 0.01)");
     cmd->add_option("--out", args->out, "also write the figures to this JSON file");

@@ -113,6 +113,9 @@ bool SimulatorOptions::is_valid(std::string* why) const {
     if (!(std::isfinite(step_displacement_tolerance_m) && step_displacement_tolerance_m >= 0))
         return fail(detail::concat("step_displacement_tolerance_m = ", step_displacement_tolerance_m,
                                    " must be >= 0"));
+    if (max_nonconvex_step_iterations < 0)
+        return fail(detail::concat("max_nonconvex_step_iterations = ", max_nonconvex_step_iterations,
+                                   " must be >= 0"));
     if (max_newton_iterations < 1)
         return fail(detail::concat("max_newton_iterations = ", max_newton_iterations, " must be >= 1"));
     if (max_step_halvings < 0 || max_step_halvings > 20)
@@ -154,6 +157,7 @@ std::string StepSummary::brief_report() const {
        << max_stitch_gap_m * 1e3 << " mm, " << seconds_total * 1e3 << " ms (assembly "
        << seconds_assembly * 1e3 << ", solve " << seconds_solve * 1e3 << ", contact "
        << seconds_contact * 1e3 << ")";
+    os << ", " << factorisations << " factorisations (" << regularised_factorisations << " regularised)";
     if (substeps > 1) os << ", " << substeps << " substeps";
     if (!message.empty()) os << "; " << message;
     return os.str();
@@ -691,6 +695,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
     Eigen::SparseMatrix<double> hessian = pattern;
     Eigen::VectorXd g;
     double shift = 0;  // Levenberg-style diagonal shift, × mass-like scale
+    int nonconvex_iterations = 0;  // time-step iterations that needed a PSD fallback or shift
     const double mass_scale = mass.maxCoeff();
     for (int it = 0;; ++it) {
         auto t0 = Clock::now();
@@ -842,6 +847,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             }
             const Eigen::SparseMatrix<double>& base = use_full ? full : hessian;
             const Eigen::SparseMatrix<double>& matrix = shift > 0 ? shifted : base;
+            ++s.factorisations;
             if (solver.factorize(matrix)) {
                 step = solver.solve(rhs);
                 if (step.allFinite() && step.dot(rhs) > 0) break;
@@ -873,6 +879,8 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             break;
         }
         const bool unregularised = shift == 0 && hessian_mode == HessianMode::exact;
+        if (inertia_weight > 0 && options.step_hessian == HessianMode::exact && !unregularised)
+            ++nonconvex_iterations;
         shift /= 10;  // let it decay once things are well conditioned
         if (shift < 1e-14) shift = 0;
 
@@ -912,6 +920,18 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         if (inertia_weight > 0 && full_step && last_move <= options.step_displacement_tolerance_m) {
             s.newton_iterations = it + 1;
             s.termination = StepTermination::converged;
+            break;
+        }
+        // Where the step's incremental potential is not convex (buckling), the projected
+        // Newton matrix converges only linearly and can crawl along the unstable mode for
+        // the whole iteration budget; the step ends instead and the next step goes on from
+        // here (docs/cloth.md, "Nonconvex steps").
+        if (inertia_weight > 0 && options.max_nonconvex_step_iterations > 0 &&
+            nonconvex_iterations >= options.max_nonconvex_step_iterations) {
+            s.newton_iterations = it + 1;
+            s.termination = StepTermination::max_iterations;
+            s.message = detail::concat("ended after ", nonconvex_iterations,
+                                       " regularised Newton iterations (not convex)");
             break;
         }
     }
@@ -1084,6 +1104,7 @@ namespace {
 void accumulate(StepSummary& total, const StepSummary& part) {
     total.newton_iterations += part.newton_iterations;
     total.regularised_factorisations += part.regularised_factorisations;
+    total.factorisations += part.factorisations;
     total.seconds_assembly += part.seconds_assembly;
     total.seconds_solve += part.seconds_solve;
     total.seconds_contact += part.seconds_contact;

@@ -31,12 +31,16 @@ TEST_CASE("drape bench-cloth prints the split timing and one JSON object on its 
     CHECK(j["max_penetration_m"].get<double>() <= 1e-3);
     CHECK(j["self_intersections"] == 0);
     CHECK(j["ms_per_step"].get<double>() > 0);
+    // Every Newton iteration that computes a step factors its matrix at least once.
+    CHECK(j["factorisations_per_step"].get<double>() >= j["newton_iterations_per_step"].get<double>());
+    CHECK(j["max_nonconvex_step_iterations"] == 4);
 }
 
 TEST_CASE("drape bench-cloth rejects unknown scenes and bad sizes", "[apps][bench-cloth]") {
     CHECK(run_drape("bench-cloth --scene cube --steps 1").exit_code == 2);
     CHECK(run_drape("bench-cloth --grid 7 --steps 1").exit_code == 2);
     CHECK(run_drape("bench-cloth --steps 0").exit_code == 2);
+    CHECK(run_drape("bench-cloth --max-nonconvex -3 --steps 1").exit_code == 2);
     const auto r = run_drape("bench-cloth --scene cube --steps 1");
     CHECK(r.out.find("--scene cube") != std::string::npos);
 }

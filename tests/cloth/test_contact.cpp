@@ -202,6 +202,53 @@ TEST_CASE("a cloth square dropped on a sphere rests on it, outside, without cros
     CHECK(sim.positions().row(scene.centre_vertex).head<2>().norm() < 0.01);
 }
 
+TEST_CASE("buckling steps end after max_nonconvex_step_iterations regularised iterations",
+          "[cloth][contact][simulator]") {
+    // The 32 x 32 anchor scene buckles as it drapes over the sphere: some steps' exact
+    // Newton matrices are indefinite. With the limit those steps end early (usable), the
+    // drape still comes to rest on the sphere as without it, with fewer Newton iterations.
+    struct Run {
+        int iterations = 0, limited_steps = 0, failed = 0;
+        Eigen::MatrixX3d x;
+        ContactReport report;
+    };
+    auto run = [](int limit) {
+        AnchorScene scene = make_anchor_scene(32);
+        scene.options.max_nonconvex_step_iterations = limit;
+        Simulator sim(scene.cloth, drape::test::gray_interlock_material(), scene.options);
+        sim.set_obstacle(Obstacle(scene.sphere.positions, scene.sphere.faces));
+        Run r;
+        for (int k = 0; k < 100; ++k) {  // 0.5 s: falls, wraps the sphere and buckles
+            const StepSummary s = sim.step();
+            r.iterations += s.newton_iterations;
+            r.failed += s.usable() ? 0 : 1;
+            if (s.message.find("not convex") != std::string::npos) {
+                ++r.limited_steps;
+                // Each counted iteration needed at least one regularised factorisation.
+                CHECK(s.regularised_factorisations >= limit);
+                CHECK(s.termination == StepTermination::max_iterations);
+            }
+        }
+        r.x = sim.positions();
+        r.report = sim.contact_report();
+        return r;
+    };
+    const Run limited = run(1), unlimited = run(0);
+    INFO("Newton iterations: limit 1 " << limited.iterations << ", no limit " << unlimited.iterations
+                                       << "; steps ended by the limit: " << limited.limited_steps);
+    CHECK(unlimited.limited_steps == 0);
+    REQUIRE(limited.limited_steps > 0);
+    CHECK(limited.iterations < unlimited.iterations);
+    for (const Run* r : {&limited, &unlimited}) {
+        CHECK(r->failed == 0);
+        CHECK(r->report.max_penetration_m <= 1e-3);
+        CHECK(r->report.self_intersections == 0);
+    }
+    // Same rest state on the sphere's top (centre node within 1 mm).
+    const int centre = make_anchor_scene(32).centre_vertex;
+    CHECK((limited.x.row(centre) - unlimited.x.row(centre)).norm() < 1e-3);
+}
+
 namespace {
 
 // Two cloth pieces in one mesh: b's vertices follow a's, and b's pattern is laid 0.1 m to

@@ -93,6 +93,10 @@ TEST_CASE("simulator rejects bad options and inputs", "[cloth][simulator]") {
     CHECK_FALSE(options.is_valid(&why));
     CHECK(why.find("time_step_s") != std::string::npos);
     CHECK_THROWS_AS(Simulator(mesh, gray_interlock(), options), drape::InvalidInput);
+    options = SimulatorOptions{};
+    options.max_nonconvex_step_iterations = -1;
+    CHECK_FALSE(options.is_valid(&why));
+    CHECK(why.find("max_nonconvex_step_iterations") != std::string::npos);
     Material bad = gray_interlock();
     bad.density_kg_per_m2 = -0.1;
     CHECK_THROWS_WITH(Simulator(mesh, bad), Catch::Matchers::Contains("density"));

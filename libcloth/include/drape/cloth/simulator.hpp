@@ -42,6 +42,13 @@ struct SimulatorOptions {
     /// than this (m): Newton converges quadratically there, so the remaining error is of
     /// the order of its square. 0 disables it.
     double step_displacement_tolerance_m = 1e-5;
+    /// A time step ends (StepTermination::max_iterations, usable) after this many Newton
+    /// iterations whose exact matrix was indefinite (solved with the projected one or a
+    /// diagonal shift): there the incremental potential is not convex (the cloth buckles),
+    /// Newton converges only linearly and could spend the whole max_newton_iterations
+    /// crawling along the buckling mode (100 iterations, 28 s, in one step of the N = 64
+    /// anchor scene); the next step carries on from the state reached. 0 = no limit.
+    int max_nonconvex_step_iterations = 4;
     /// Newton matrix of the elastic terms in time steps. `exact`: with the inertia term the
     /// system is almost always positive definite and Newton converges quadratically; when
     /// the factorisation finds it indefinite, that iteration falls back to projected_psd.
@@ -107,6 +114,7 @@ struct StepSummary {
     std::string message;
     int newton_iterations = 0;
     int regularised_factorisations = 0;  ///< times the Hessian needed a diagonal shift
+    int factorisations = 0;              ///< Cholesky factorisations (incl. regularised)
     int substeps = 1;                    ///< > 1 when the step was split by halving
     int contacts = 0;                    ///< vertices within the thickness of the obstacle
     int self_contact_pairs = 0;          ///< active cloth–cloth pairs at the last iteration
