@@ -161,7 +161,8 @@ void vary_skirt(Rng& rng, garment::SkirtSizing& s) {
 
 // The template's proposal for the body with seeded ease, then seeded length and flare
 // changes; a variation the template rejects is redrawn (the proposal after 20 tries).
-GarmentSizing sample_sizing(Rng& rng, GarmentType type, const body::BodyMeasurements& m) {
+GarmentSizing sample_sizing(Rng& rng, GarmentType type, const body::BodyMeasurements& m,
+                            double skirt_waistband_girth_m) {
     for (int attempt = 0; attempt < 20; ++attempt) {
         garment::Ease ease;
         ease.waist_cm = rng.uniform(2.0, 8.0);
@@ -172,7 +173,12 @@ GarmentSizing sample_sizing(Rng& rng, GarmentType type, const body::BodyMeasurem
         g.type = type;
         switch (type) {
             case GarmentType::skirt:
-                g.skirt = garment::propose_skirt_sizing(m, ease);
+                // The waist where a waistband holds (garment::skirt_waistband) with 1-3 cm
+                // of ease (the seeded waist ease mapped from [2, 8] cm, so the random
+                // streams stay as they were): sized from the navel girth, skirts slid off
+                // bodies whose belly is wider than their hips.
+                g.skirt = garment::propose_skirt_sizing(m, skirt_waistband_girth_m,
+                                                        1.0 + (ease.waist_cm - 2.0) / 3.0);
                 vary_skirt(rng, g.skirt);
                 break;
             case GarmentType::pants:
@@ -327,9 +333,10 @@ SynthScene sample_synth_scene(const SynthOptions& options) {
     s.shaping_report = shaping.brief_report();
     Rng sizing_rng(options.seed, sizing_stream), material_rng(options.seed, material_stream),
         look_rng(options.seed, look_stream);
+    const double waistband_girth_m = garment::skirt_waistband(model, s.shaped).girth_m;
     for (GarmentType t : types) {
         SynthGarment g;
-        g.sizing = sample_sizing(sizing_rng, t, shaping.measured);
+        g.sizing = sample_sizing(sizing_rng, t, shaping.measured, waistband_girth_m);
         g.base_fabric = options.material == "random" ? fabrics[material_rng.index(fabrics.size())] : options.material;
         g.material = cloth::builtin_material(g.base_fabric);
         const double log_scale = material_rng.uniform(0.0, 2.0);  // drawn always: streams stay aligned
