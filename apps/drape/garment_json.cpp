@@ -113,12 +113,17 @@ GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& me
     return g;
 }
 
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured,
+                              double skirt_waistband_girth_m) {
+    GarmentSizing g = proposed_sizing(type, measured);
+    if (type == GarmentType::skirt) g.skirt = garment::propose_skirt_sizing(measured, skirt_waistband_girth_m);
+    return g;
+}
+
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
                               const body::BodyMeasurements& measured) {
-    GarmentSizing g = proposed_sizing(type, measured);
-    if (type == GarmentType::skirt)
-        g.skirt = garment::propose_skirt_sizing(measured, garment::skirt_waistband(model, shaped).girth_m);
-    return g;
+    if (type != GarmentType::skirt) return proposed_sizing(type, measured);
+    return proposed_sizing(type, measured, garment::skirt_waistband(model, shaped).girth_m);
 }
 
 void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,

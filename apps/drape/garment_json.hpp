@@ -42,8 +42,11 @@ nlohmann::json to_json(const GarmentSizing& sizing);
 
 /// The sizing each template proposes for a body (garment::propose_*_sizing).
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured);
-/// The same, but a skirt's waist from the girth where its waistband sits on `shaped`
-/// (garment::skirt_waistband) plus the skirt waist ease.
+/// The same, but a skirt's waist from `skirt_waistband_girth_m` (garment::skirt_waistband)
+/// plus the skirt waist ease.
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured,
+                              double skirt_waistband_girth_m);
+/// The same with the waistband girth measured on `shaped`.
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
                               const body::BodyMeasurements& measured);
 

@@ -209,7 +209,7 @@ GarmentSizing sample_sizing(Rng& rng, GarmentType type, const body::BodyMeasurem
         } catch (const InvalidInput&) {
         }
     }
-    return proposed_sizing(type, m);
+    return proposed_sizing(type, m, skirt_waistband_girth_m);
 }
 
 const std::vector<Eigen::Vector3d>& garment_palette() {
@@ -333,7 +333,9 @@ SynthScene sample_synth_scene(const SynthOptions& options) {
     s.shaping_report = shaping.brief_report();
     Rng sizing_rng(options.seed, sizing_stream), material_rng(options.seed, material_stream),
         look_rng(options.seed, look_stream);
-    const double waistband_girth_m = garment::skirt_waistband(model, s.shaped).girth_m;
+    // Only a skirt's sizing needs it (the dress's skirt is sized from its bodice).
+    const bool has_skirt = std::find(types.begin(), types.end(), GarmentType::skirt) != types.end();
+    const double waistband_girth_m = has_skirt ? garment::skirt_waistband(model, s.shaped).girth_m : 0.0;
     for (GarmentType t : types) {
         SynthGarment g;
         g.sizing = sample_sizing(sizing_rng, t, shaping.measured, waistband_girth_m);

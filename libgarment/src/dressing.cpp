@@ -477,9 +477,10 @@ std::string DressingSummary::brief_report() const {
     os << (usable() ? "dressed" : "dressing NOT usable") << ": " << vertices_inside
        << " vertices inside the body, " << vertices_pushed << " pushed, " << iterations
        << " round(s), max seam gap " << 100 * max_seam_gap_m << " cm (" << 100 * wrapped_seam_gap_m
-       << " cm before push-out), " << self_intersections << " self-intersections, penetration "
+       << " cm before push-out), " << self_intersections << " self-intersections ("
+       << untangle.initial_self_intersections << " before untangling), penetration "
        << 1000 * max_penetration_m << " mm, min layer distance " << 1000 * min_layer_distance_m
-       << " mm (" << untangle.initial_self_intersections << " before untangling), alignment rms "
+       << " mm, alignment rms "
        << alignment_rms_m << " m, " << seconds << " s";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();

@@ -191,27 +191,44 @@ FoldEdge sample(const Edge& e, double scale, const Vec& offset) {
     return f;
 }
 
-/// One detection with the body resampled to Hw px: sets the edge and fold counts of `s`.
-void detect_at(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion, double H,
-               double Hw, const WrinkleOptions& o, WrinkleSummary& s, std::vector<Fold>* folds) {
-    // Work inside the garment's box (margin 3 sigma), resampled so that the body is
-    // working_body_height_px tall: every filter then sees the same pixel scale whatever
-    // the photo's resolution (discrete derivatives bias small sigmas).
+/// The garment's box (margin 3 sigma of the largest scale) cut from the photo once, as
+/// float gray, with its masks; each detection of the ensemble resamples it.
+struct GarmentCrop {
+    cv::Rect roi;
+    cv::Mat gray;       ///< CV_32F in [0, 1], the photo's resolution
+    cv::Mat mask, occlusion;  ///< views of the photo-size masks (occlusion may be empty)
+};
+
+GarmentCrop crop_garment(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion, double H,
+                         const WrinkleOptions& o) {
     const double sigma_max = *std::max_element(o.scale_fractions.begin(), o.scale_fractions.end()) * H;
     const int margin = int(std::ceil(3 * sigma_max)) + 2;
     const cv::Rect box = cv::boundingRect(mask);
-    const cv::Rect roi = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin,
-                                  box.height + 2 * margin) & cv::Rect(0, 0, image.cols, image.rows);
+    GarmentCrop c;
+    c.roi = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin) &
+            cv::Rect(0, 0, image.cols, image.rows);
+    cv::cvtColor(image(c.roi), c.gray, cv::COLOR_BGR2GRAY);
+    c.gray.convertTo(c.gray, CV_32F, 1.0 / 255.0);
+    c.mask = mask(c.roi);
+    if (!occlusion.empty()) c.occlusion = occlusion(c.roi);
+    return c;
+}
+
+/// One detection with the body resampled to Hw px: sets the edge and fold counts of `s`.
+void detect_at(const GarmentCrop& crop, double H, double Hw, const WrinkleOptions& o, WrinkleSummary& s,
+               std::vector<Fold>* folds) {
+    // The crop is resampled so that the body is Hw px tall: every filter then sees the
+    // same pixel scale whatever the photo's resolution (discrete derivatives bias small
+    // sigmas).
+    const cv::Rect& roi = crop.roi;
     const double f = Hw / H;
     const cv::Size work_size(std::max(3, int(std::lround(roi.width * f))),
                              std::max(3, int(std::lround(roi.height * f))));
     cv::Mat gray;
-    cv::cvtColor(image(roi), gray, cv::COLOR_BGR2GRAY);
-    gray.convertTo(gray, CV_32F, 1.0 / 255.0);
-    cv::resize(gray, gray, work_size, 0, 0, f < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+    cv::resize(crop.gray, gray, work_size, 0, 0, f < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
     cv::Mat mask_w, occ_w;
-    cv::resize(mask(roi), mask_w, work_size, 0, 0, cv::INTER_NEAREST);
-    if (!occlusion.empty()) cv::resize(occlusion(roi), occ_w, work_size, 0, 0, cv::INTER_NEAREST);
+    cv::resize(crop.mask, mask_w, work_size, 0, 0, cv::INTER_NEAREST);
+    if (!crop.occlusion.empty()) cv::resize(crop.occlusion, occ_w, work_size, 0, 0, cv::INTER_NEAREST);
     const Vec offset(roi.x, roi.y);
     // Multi-scale Hessian: scale-normalised sigma^2 * eigenvalues; keep the strongest.
     cv::Mat resp_bright = cv::Mat::zeros(gray.size(), CV_32F), resp_dark = resp_bright.clone();
@@ -390,13 +407,13 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
     // merging, pairing), so a fold near a threshold comes and goes when the photo is
     // resampled; averaging over grids measures P, not one grid's luck.
     const int n = o.resolution_ensemble;
+    const GarmentCrop crop = crop_garment(image, mask, occlusion, H, o);
     double count_sum = 0;
     for (int k = 0; k < n; ++k) {
         const double t = n > 1 ? 2.0 * k / (n - 1) - 1.0 : 0.0;
         WrinkleSummary sk;
-        const bool nominal = (n % 2 == 1) ? 2 * k == n - 1 : k == n / 2;
-        detect_at(image, mask, occlusion, H, o.working_body_height_px * std::pow(1.15, t), o, sk,
-                  nominal ? folds : nullptr);
+        const bool nominal = k == n / 2;  // the middle one (t = 0 when n is odd)
+        detect_at(crop, H, o.working_body_height_px * std::pow(1.15, t), o, sk, nominal ? folds : nullptr);
         count_sum += sk.fold_count;
         if (nominal) {
             s.edges_detected = sk.edges_detected;
