@@ -210,10 +210,9 @@ private:
 
 // For each query item i in [0, n): the stored boxes overlapping query_box(i), in increasing
 // id order, passed to test(i, id, out); the outputs are concatenated in item order.
-template <class QueryBox, class Test>
-std::vector<ContactPair> grid_pairs(int n, const UniformGrid& grid, QueryBox&& query_box,
-                                    Test&& test) {
-    std::vector<std::vector<ContactPair>> parts(chunk_count(n));
+template <class Item, class QueryBox, class Test>
+std::vector<Item> grid_pairs(int n, const UniformGrid& grid, QueryBox&& query_box, Test&& test) {
+    std::vector<std::vector<Item>> parts(chunk_count(n));
     for_each_chunk(n, [&](int c, int begin, int end) {
         std::vector<int> hits;
         for (int i = begin; i < end; ++i) {
@@ -223,9 +222,27 @@ std::vector<ContactPair> grid_pairs(int n, const UniformGrid& grid, QueryBox&& q
             for (int id : hits) test(i, id, parts[c]);
         }
     });
-    std::vector<ContactPair> all;
+    std::vector<Item> all;
     for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
     return all;
+}
+
+// A pair found by find_candidates with its distance then.
+struct FoundPair {
+    ContactPair pair;
+    double distance = 0;
+};
+
+// The largest offset of a pair's two primitives (columns [0, na) and [na, 4)) summed: a
+// bound of how much closer the pair can have come since the offsets' reference.
+double pair_offset(const ContactPair& pair, const std::vector<double>& offset) {
+    const int na = first_primitive_size(pair.kind);
+    double a = 0, b = 0;
+    for (int k = 0; k < 4; ++k) {
+        double& bound = k < na ? a : b;
+        bound = std::max(bound, offset[static_cast<std::size_t>(pair.v[static_cast<std::size_t>(k)])]);
+    }
+    return a + b;
 }
 
 }  // namespace
@@ -453,30 +470,85 @@ void SelfContact::set_rest_filter(const Eigen::MatrixX2d& vertex_pattern,
             vertex_pattern.rows(), " pattern rows and ", piece.size(), " piece ids");
     require(std::isfinite(min_distance_m) && min_distance_m >= 0,
             "SelfContact::set_rest_filter: min_distance_m = ", min_distance_m, " must be >= 0");
-    rest_ = Eigen::MatrixX3d::Zero(vertex_count_, 3);
-    rest_.leftCols<2>() = vertex_pattern;
-    piece_ = piece;
-    rest_min_distance_ = min_distance_m;
+    require(vertex_pattern.allFinite(), "SelfContact::set_rest_filter: pattern coordinates are not finite");
+    rest_face_start_.clear();
+    rest_faces_.clear();
+    rest_edge_start_.clear();
+    rest_edges_.clear();
+    if (min_distance_m <= 0 || vertex_count_ == 0) return;
+    // The pairs are found once here (the pattern does not change), so that find_candidates
+    // looks them up instead of measuring pattern distances for every pair it meets.
+    Eigen::MatrixX3d rest = Eigen::MatrixX3d::Zero(vertex_count_, 3);
+    rest.leftCols<2>() = vertex_pattern;
+    const int nf = static_cast<int>(faces_.rows()), ne = static_cast<int>(edges_.size());
+    const double r2 = min_distance_m * min_distance_m;
+    auto same_piece = [&](std::initializer_list<int> vs) {
+        const int first = piece[static_cast<std::size_t>(*vs.begin())];
+        for (int v : vs)
+            if (piece[static_cast<std::size_t>(v)] != first) return false;
+        return true;
+    };
+    double mean_edge = 0;
+    for (const auto& e : edges_) mean_edge += (rest.row(e[0]) - rest.row(e[1])).norm();
+    mean_edge /= std::max(ne, 1);
+    const double cell = std::max(mean_edge + 2 * min_distance_m, 1e-9);
+    // grid_pairs lists the pairs by row, each row's items in increasing order.
+    auto to_rows = [](const std::vector<FoundPair>& found, int rows, std::vector<int>& start,
+                      std::vector<int>& items) {
+        start.assign(static_cast<std::size_t>(rows) + 1, 0);
+        for (const FoundPair& f : found) ++start[static_cast<std::size_t>(f.pair.v[0]) + 1];
+        for (int r = 0; r < rows; ++r) start[static_cast<std::size_t>(r) + 1] += start[static_cast<std::size_t>(r)];
+        items.resize(found.size());
+        std::vector<int> fill(start.begin(), start.end() - 1);
+        for (const FoundPair& f : found)
+            items[static_cast<std::size_t>(fill[static_cast<std::size_t>(f.pair.v[0])]++)] = f.pair.v[1];
+    };
+
+    std::vector<Eigen::AlignedBox3d> tri_boxes(static_cast<std::size_t>(nf));
+    for (int f = 0; f < nf; ++f) {
+        const int v[3] = {faces_(f, 0), faces_(f, 1), faces_(f, 2)};
+        tri_boxes[static_cast<std::size_t>(f)] = box_of(rest, v, 3, min_distance_m);
+    }
+    // FoundPair is reused as (row, item) here: v[0] = vertex or edge, v[1] = face or edge.
+    const std::vector<FoundPair> vt = grid_pairs<FoundPair>(
+        vertex_count_, UniformGrid(tri_boxes, cell),
+        [&](int v) { return Eigen::AlignedBox3d(rest.row(v).transpose(), rest.row(v).transpose()); },
+        [&](int v, int f, std::vector<FoundPair>& out) {
+            const int t0 = faces_(f, 0), t1 = faces_(f, 1), t2 = faces_(f, 2);
+            if (!same_piece({v, t0, t1, t2})) return;
+            if (point_triangle_distance_squared(rest.row(v), rest.row(t0), rest.row(t1), rest.row(t2)) < r2)
+                out.push_back({{ContactPair::Kind::vertex_triangle, {v, f, 0, 0}}, 0.0});
+        });
+    to_rows(vt, vertex_count_, rest_face_start_, rest_faces_);
+
+    std::vector<Eigen::AlignedBox3d> edge_boxes(static_cast<std::size_t>(ne));
+    for (int e = 0; e < ne; ++e) edge_boxes[static_cast<std::size_t>(e)] = box_of(rest, edges_[static_cast<std::size_t>(e)].data(), 2, min_distance_m);
+    const std::vector<FoundPair> ee = grid_pairs<FoundPair>(
+        ne, UniformGrid(edge_boxes, cell),
+        [&](int e) { return box_of(rest, edges_[static_cast<std::size_t>(e)].data(), 2, 0.0); },
+        [&](int e, int o, std::vector<FoundPair>& out) {
+            if (o <= e) return;
+            const auto& a = edges_[static_cast<std::size_t>(e)];
+            const auto& b = edges_[static_cast<std::size_t>(o)];
+            if (!same_piece({a[0], a[1], b[0], b[1]})) return;
+            if (segment_segment_distance_squared(rest.row(a[0]), rest.row(a[1]), rest.row(b[0]), rest.row(b[1])) < r2)
+                out.push_back({{ContactPair::Kind::edge_edge, {e, o, 0, 0}}, 0.0});
+        });
+    to_rows(ee, ne, rest_edge_start_, rest_edges_);
 }
 
-bool SelfContact::rest_near_vertex_triangle(int v, int t0, int t1, int t2) const {
-    if (rest_min_distance_ <= 0) return false;
-    const int pv = piece_[static_cast<std::size_t>(v)];
-    if (piece_[static_cast<std::size_t>(t0)] != pv || piece_[static_cast<std::size_t>(t1)] != pv ||
-        piece_[static_cast<std::size_t>(t2)] != pv)
-        return false;
-    return point_triangle_distance_squared(rest_.row(v), rest_.row(t0), rest_.row(t1), rest_.row(t2)) <
-           rest_min_distance_ * rest_min_distance_;
+bool SelfContact::rest_near_vertex_triangle(int v, int f) const {
+    if (rest_face_start_.empty()) return false;
+    const auto begin = rest_faces_.begin() + rest_face_start_[static_cast<std::size_t>(v)];
+    const auto end = rest_faces_.begin() + rest_face_start_[static_cast<std::size_t>(v) + 1];
+    return std::binary_search(begin, end, f);
 }
 
-bool SelfContact::rest_near_edges(int a0, int a1, int b0, int b1) const {
-    if (rest_min_distance_ <= 0) return false;
-    const int pa = piece_[static_cast<std::size_t>(a0)];
-    if (piece_[static_cast<std::size_t>(a1)] != pa || piece_[static_cast<std::size_t>(b0)] != pa ||
-        piece_[static_cast<std::size_t>(b1)] != pa)
-        return false;
-    return segment_segment_distance_squared(rest_.row(a0), rest_.row(a1), rest_.row(b0), rest_.row(b1)) <
-           rest_min_distance_ * rest_min_distance_;
+bool SelfContact::rest_near_edges(int e, int o) const {
+    if (rest_edge_start_.empty()) return false;
+    const auto begin = rest_edges_.begin() + rest_edge_start_[static_cast<std::size_t>(e)];
+    const auto end = rest_edges_.begin() + rest_edge_start_[static_cast<std::size_t>(e) + 1];
+    return std::binary_search(begin, end, o);
 }
 
 void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
@@ -488,6 +560,7 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
     radius_ = radius;
     reference_ = p;
     candidates_.clear();
+    reference_distance_.clear();
     const int nf = static_cast<int>(faces_.rows()), ne = static_cast<int>(edges_.size());
     if (nf == 0 || vertex_count_ == 0) return;
 
@@ -507,15 +580,15 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
     }
     const UniformGrid tri_grid(tri_boxes, cell);
 
-    const std::vector<ContactPair> vt = grid_pairs(
+    const std::vector<FoundPair> vt = grid_pairs<FoundPair>(
         vertex_count_, tri_grid,
         [&](int v) { return Eigen::AlignedBox3d(p.row(v).transpose(), p.row(v).transpose()); },
-        [&](int v, int f, std::vector<ContactPair>& out) {
+        [&](int v, int f, std::vector<FoundPair>& out) {
             const int t0 = faces_(f, 0), t1 = faces_(f, 1), t2 = faces_(f, 2);
             if (excluded(v, t0) || excluded(v, t1) || excluded(v, t2)) return;
-            if (rest_near_vertex_triangle(v, t0, t1, t2)) return;
-            if (point_triangle_distance_squared(p.row(v), p.row(t0), p.row(t1), p.row(t2)) < r2)
-                out.push_back({ContactPair::Kind::vertex_triangle, {v, t0, t1, t2}});
+            if (rest_near_vertex_triangle(v, f)) return;
+            const double d2 = point_triangle_distance_squared(p.row(v), p.row(t0), p.row(t1), p.row(t2));
+            if (d2 < r2) out.push_back({{ContactPair::Kind::vertex_triangle, {v, t0, t1, t2}}, std::sqrt(d2)});
         });
 
     // Edge–edge: edges inflated by the radius, queried with each edge's own box.
@@ -523,21 +596,36 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
     for (int e = 0; e < ne; ++e) edge_boxes[e] = box_of(p, edges_[e].data(), 2, radius);
     const UniformGrid edge_grid(edge_boxes, cell);
 
-    const std::vector<ContactPair> ee = grid_pairs(
+    const std::vector<FoundPair> ee = grid_pairs<FoundPair>(
         ne, edge_grid, [&](int e) { return box_of(p, edges_[e].data(), 2, 0.0); },
-        [&](int e, int o, std::vector<ContactPair>& out) {
+        [&](int e, int o, std::vector<FoundPair>& out) {
             if (o <= e) return;
             const int a0 = edges_[e][0], a1 = edges_[e][1], b0 = edges_[o][0], b1 = edges_[o][1];
             if (excluded(a0, b0) || excluded(a0, b1) || excluded(a1, b0) || excluded(a1, b1))
                 return;
-            if (rest_near_edges(a0, a1, b0, b1)) return;
-            if (segment_segment_distance_squared(p.row(a0), p.row(a1), p.row(b0), p.row(b1)) <
-                r2)
-                out.push_back({ContactPair::Kind::edge_edge, {a0, a1, b0, b1}});
+            if (rest_near_edges(e, o)) return;
+            const double d2 = segment_segment_distance_squared(p.row(a0), p.row(a1), p.row(b0), p.row(b1));
+            if (d2 < r2) out.push_back({{ContactPair::Kind::edge_edge, {a0, a1, b0, b1}}, std::sqrt(d2)});
         });
 
-    candidates_ = vt;
-    candidates_.insert(candidates_.end(), ee.begin(), ee.end());
+    candidates_.reserve(vt.size() + ee.size());
+    reference_distance_.reserve(vt.size() + ee.size());
+    for (const auto* found : {&vt, &ee})
+        for (const FoundPair& f : *found) {
+            candidates_.push_back(f.pair);
+            reference_distance_.push_back(f.distance);
+        }
+}
+
+std::vector<double> SelfContact::vertex_offsets(const Eigen::MatrixX3d& q) const {
+    // Any one translation T may be taken out (|Δa − T| + |Δb − T| bounds how much closer a
+    // and b came): T = 0 suits cloth resting on a body, T = the mean a falling sheet.
+    const Eigen::MatrixX3d moved = q - reference_;
+    const Eigen::RowVector3d mean = moved.colwise().mean();
+    const Eigen::VectorXd still = moved.rowwise().norm();
+    const Eigen::VectorXd relative = (moved.rowwise() - mean).rowwise().norm();
+    const Eigen::VectorXd& best = relative.maxCoeff() < still.maxCoeff() ? relative : still;
+    return {best.data(), best.data() + best.size()};
 }
 
 double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& params,
@@ -556,9 +644,15 @@ double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& p
     // `hessians` vector pays no reallocation or page faults.
     const int n = static_cast<int>(candidates_.size());
     const double h2 = params.thickness_m * params.thickness_m;
+    // Candidates that were too far to have come within h since find_candidates are skipped
+    // without looking at their coordinates (most of them, with a generous radius).
+    const std::vector<double> moved = n > 0 ? vertex_offsets(q) : std::vector<double>();
+    const double reach = params.thickness_m * (1 + 1e-9);
     std::vector<std::vector<int>> active(chunk_count(n));
     for_each_chunk(n, [&](int c, int begin, int end) {
         for (int i = begin; i < end; ++i) {
+            if (reference_distance_[static_cast<std::size_t>(i)] - pair_offset(candidates_[i], moved) >= reach)
+                continue;
             const Mat34 x = gather(q, candidates_[i]);
             if (box_gap_squared(candidates_[i].kind, x) < h2 &&
                 pair_distance_squared(candidates_[i].kind, x) < h2)
@@ -595,7 +689,10 @@ std::vector<PairFrame> SelfContact::contact_frames(const Eigen::MatrixX3d& q, do
             " rows, expected ", vertex_count_);
     const double h2 = thickness_m * thickness_m;
     std::vector<PairFrame> frames;
-    for (const ContactPair& pair : candidates_) {
+    const std::vector<double> offset = candidates_.empty() ? std::vector<double>() : vertex_offsets(q);
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        const ContactPair& pair = candidates_[i];
+        if (reference_distance_[i] - pair_offset(pair, offset) >= thickness_m * (1 + 1e-9)) continue;
         const Mat34 x = gather(q, pair);
         if (box_gap_squared(pair.kind, x) >= h2) continue;
         DistanceRegime regime;
@@ -615,7 +712,8 @@ std::vector<PairFrame> SelfContact::contact_frames(const Eigen::MatrixX3d& q, do
 
 double SelfContact::covered_radius(const Eigen::MatrixX3d& q) const {
     if (radius_ <= 0 || q.rows() != reference_.rows()) return 0.0;
-    const double moved = q.rows() > 0 ? (q - reference_).rowwise().norm().maxCoeff() : 0.0;
+    const std::vector<double> offsets = vertex_offsets(q);
+    const double moved = offsets.empty() ? 0.0 : *std::max_element(offsets.begin(), offsets.end());
     return std::max(0.0, radius_ - 2 * moved);
 }
 
@@ -652,12 +750,25 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
     // displacements; translating all four by m leaves the distance unchanged), because every
     // point of a primitive moves by a convex combination of its vertices' displacements.
     // From α_i with distance d_i, [α_i, α_i + (d_i − F)/l] is therefore safe; iterate.
+    // A pair at distance d0 >= s + l / fraction stays above its floor over all of [0, 1]
+    // (below). Per-vertex bounds decide that for most pairs without touching coordinates:
+    // d0 >= (distance at find_candidates) − (offsets since), and l <= the largest |dx − m|
+    // of each primitive summed, m = the mean of dx (any common translation will do).
     const int n = static_cast<int>(candidates_.size());
+    std::vector<double> offset, spread;
+    if (n > 0) {
+        offset = vertex_offsets(p);
+        const Eigen::RowVector3d mean = dx.colwise().mean();
+        const Eigen::VectorXd rel = (dx.rowwise() - mean).rowwise().norm();
+        spread.assign(rel.data(), rel.data() + rel.size());
+    }
     std::vector<double> chunk_alpha(chunk_count(n), 1.0);
     for_each_chunk(n, [&](int c, int begin, int end) {
         double best = 1.0;
         for (int i = begin; i < end; ++i) {
             const ContactPair& pair = candidates_[i];
+            const double d0_bound = reference_distance_[static_cast<std::size_t>(i)] - pair_offset(pair, offset);
+            if (d0_bound >= (s + pair_offset(pair, spread) / fraction) * (1 + 1e-9) + 1e-12) continue;
             const Mat34 x0 = gather(p, pair), d = gather(dx, pair);
             const Mat34 rel = d.colwise() - d.rowwise().mean();
             const int na = first_primitive_size(pair.kind);

@@ -120,7 +120,8 @@ public:
 
     const std::vector<ContactPair>& candidates() const { return candidates_; }
     /// The distance below which every admissible pair at positions q is a candidate:
-    /// candidate_radius() − 2 max_v |q_v − p_v| (p: the last find_candidates positions),
+    /// candidate_radius() − 2 max_v |q_v − p_v − T| (p: the last find_candidates positions;
+    /// T: no translation or the mean displacement, whichever gives the smaller maximum),
     /// at least 0; 0 before the first call or on a row-count mismatch. The candidates may be
     /// reused at q while this is at least the radius the caller needs.
     double covered_radius(const Eigen::MatrixX3d& q) const;
@@ -163,17 +164,23 @@ public:
 
 private:
     bool excluded(int a, int b) const;
-    bool rest_near_vertex_triangle(int v, int t0, int t1, int t2) const;
-    bool rest_near_edges(int a0, int a1, int b0, int b1) const;
+    // Whether (vertex v, face f) / (edge e, edge o > e) is in the rest filter's lists.
+    bool rest_near_vertex_triangle(int v, int f) const;
+    bool rest_near_edges(int e, int o) const;
 
     Eigen::MatrixX3i faces_;
     int vertex_count_ = 0;
     std::vector<std::array<int, 2>> edges_;
     std::vector<std::vector<int>> partners_;  // per vertex, sorted
-    Eigen::MatrixX3d rest_;                   // pattern coordinates lifted to z = 0
-    std::vector<int> piece_;
-    double rest_min_distance_ = 0;            // 0: no rest filter
+    // The rest filter's pairs, fixed with the pattern: per vertex the faces, per edge the
+    // edges of higher index that are rest-near (compressed rows, sorted within a row).
+    std::vector<int> rest_face_start_, rest_faces_, rest_edge_start_, rest_edges_;
+    // Per-vertex bound of how far each vertex has moved from reference_ at q, up to one
+    // common translation of the whole cloth (which moves no pair closer).
+    std::vector<double> vertex_offsets(const Eigen::MatrixX3d& q) const;
+
     std::vector<ContactPair> candidates_;
+    std::vector<double> reference_distance_;  // per candidate, its distance at reference_
     double radius_ = 0;
     Eigen::MatrixX3d reference_;              // positions of the last find_candidates call
 };

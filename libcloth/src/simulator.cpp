@@ -670,7 +670,15 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
     std::vector<internal::PairHessian> pair_hessians;
     double last_move = 0;
     bool renew_next = false;
-    const double v_max = inertia_weight > 0 ? v.rowwise().norm().maxCoeff() : 0.0;
+    // How far the cloth moves relative to itself (up to a common translation, which brings
+    // no two of its points closer): what the self-contact candidates must cover.
+    auto spread = [](const Eigen::MatrixX3d& d) {
+        if (d.rows() == 0) return 0.0;
+        const Eigen::RowVector3d mean = d.colwise().mean();
+        return std::min(d.rowwise().norm().maxCoeff(), (d.rowwise() - mean).rowwise().norm().maxCoeff());
+    };
+    double last_spread = 0;
+    const double v_spread = inertia_weight > 0 ? spread(v) : 0.0;
 
     auto total = [&](const Eigen::MatrixX3d& q, Eigen::VectorXd* g, double* values,
                      std::vector<internal::PairHessian>* ph) {
@@ -726,14 +734,15 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             drop_released_friction();
         }
         // Self-contact candidates within h + twice the expected motion of this iteration
-        // (the last step's, or the velocity's over the step): the energy ignores pairs
+        // (the last step's, or the velocity's over the step, both less any common
+        // translation of the whole cloth): the energy ignores pairs
         // beyond h, and the step bound below shortens any step that could bring an
         // uncollected pair (farther than the radius now) within reach.
         // The candidates are reused while they still cover that radius at p (vertices moved
         // less than half the extra margin since they were collected).
         if (use_self) {
-            double expected = last_move;
-            if (it == 0) expected = step_dt > 0 ? v_max * step_dt : 0.0;
+            double expected = last_spread;
+            if (it == 0) expected = step_dt > 0 ? v_spread * step_dt : 0.0;
             const double needed = h + 2 * std::min(expected, 4 * h) + 1e-9;
             if (self_contact.covered_radius(p) < needed)
                 self_contact.find_candidates(p, needed + kCandidateMargin * h);
@@ -906,6 +915,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             if (std::isfinite(et) && et <= e + 1e-4 * alpha * slope) {
                 p = trial;
                 last_move = alpha * dx.rowwise().norm().maxCoeff();
+                if (use_self) last_spread = alpha * spread(dx);
                 accepted = true;
                 full_step = pure_newton && k == 0;
                 break;

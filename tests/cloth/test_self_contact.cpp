@@ -121,20 +121,45 @@ ClothMesh test_fold(int n, double size, double gap, double noise, unsigned seed)
 }
 
 // All admissible pairs closer than `radius` by O(n²) enumeration, in SelfContact's order.
+// A rest filter for brute_force_pairs: pairs on one piece closer than min_distance in the
+// pattern are left out.
+struct RestFilter {
+    Eigen::MatrixX3d pattern;  // #V x 3 (z = 0)
+    std::vector<int> piece;
+    double min_distance = 0;
+};
+
 std::vector<ContactPair> brute_force_pairs(const SelfContact& sc, const Eigen::MatrixX3d& p,
                                            const Eigen::MatrixX3i& faces, double radius,
-                                           const std::vector<std::pair<int, int>>& excluded) {
+                                           const std::vector<std::pair<int, int>>& excluded,
+                                           const RestFilter* rest = nullptr) {
     auto excl = [&](int a, int b) {
         if (a == b) return true;
         for (auto [i, j] : excluded)
             if ((i == a && j == b) || (i == b && j == a)) return true;
         return false;
     };
+    auto one_piece = [&](int a, int b, int c, int d) {
+        const auto& pc = rest->piece;
+        return pc[a] == pc[b] && pc[a] == pc[c] && pc[a] == pc[d];
+    };
+    const double rest2 = rest ? rest->min_distance * rest->min_distance : 0.0;
+    auto rest_near_vt = [&](int v, int t0, int t1, int t2) {
+        return rest && one_piece(v, t0, t1, t2) &&
+               point_triangle_distance_squared(rest->pattern.row(v), rest->pattern.row(t0),
+                                               rest->pattern.row(t1), rest->pattern.row(t2)) < rest2;
+    };
+    auto rest_near_ee = [&](int a0, int a1, int b0, int b1) {
+        return rest && one_piece(a0, a1, b0, b1) &&
+               segment_segment_distance_squared(rest->pattern.row(a0), rest->pattern.row(a1),
+                                                rest->pattern.row(b0), rest->pattern.row(b1)) < rest2;
+    };
     std::vector<ContactPair> out;
     for (int v = 0; v < p.rows(); ++v)
         for (int f = 0; f < faces.rows(); ++f) {
             const int t0 = faces(f, 0), t1 = faces(f, 1), t2 = faces(f, 2);
             if (excl(v, t0) || excl(v, t1) || excl(v, t2)) continue;
+            if (rest_near_vt(v, t0, t1, t2)) continue;
             if (point_triangle_distance_squared(p.row(v), p.row(t0), p.row(t1), p.row(t2)) <
                 radius * radius)
                 out.push_back({Kind::vertex_triangle, {v, t0, t1, t2}});
@@ -144,6 +169,7 @@ std::vector<ContactPair> brute_force_pairs(const SelfContact& sc, const Eigen::M
         for (std::size_t o = e + 1; o < edges.size(); ++o) {
             const int a0 = edges[e][0], a1 = edges[e][1], b0 = edges[o][0], b1 = edges[o][1];
             if (excl(a0, b0) || excl(a0, b1) || excl(a1, b0) || excl(a1, b1)) continue;
+            if (rest_near_ee(a0, a1, b0, b1)) continue;
             if (segment_segment_distance_squared(p.row(a0), p.row(a1), p.row(b0), p.row(b1)) <
                 radius * radius)
                 out.push_back({Kind::edge_edge, {a0, a1, b0, b1}});
@@ -303,6 +329,88 @@ TEST_CASE("self-contact broad phase finds exactly the brute-force pairs",
     SelfContact sc(Eigen::MatrixX3i(0, 3), 0);
     sc.find_candidates(Eigen::MatrixX3d(0, 3), 0.01);
     CHECK(sc.candidates().empty());
+}
+
+TEST_CASE("self-contact rest filter leaves out exactly the pairs near in the pattern",
+          "[cloth][self_contact]") {
+    // The fold's flat layout is its pattern; two pieces (left and right half), so pairs
+    // across the split are never filtered.
+    const ClothMesh mesh = test_fold(14, 0.1, 0.004, 0.0025, 4);
+    RestFilter rest;
+    REQUIRE(mesh.pattern.rows() == mesh.vertex_count());  // one pattern point per vertex
+    rest.pattern = Eigen::MatrixX3d::Zero(mesh.vertex_count(), 3);
+    rest.pattern.leftCols<2>() = mesh.pattern;
+    for (int v = 0; v < mesh.vertex_count(); ++v) rest.piece.push_back(mesh.pattern(v, 0) < 0.047 ? 0 : 1);
+    SelfContact sc(mesh.faces, mesh.vertex_count());
+    for (double min_distance : {0.0, 0.008, 0.02}) {
+        rest.min_distance = min_distance;
+        sc.set_rest_filter(rest.pattern.leftCols<2>(), rest.piece, min_distance);
+        for (double radius : {0.005, 0.012}) {
+            sc.find_candidates(mesh.positions, radius);
+            const auto expected = brute_force_pairs(sc, mesh.positions, mesh.faces, radius, {}, &rest);
+            INFO("min distance " << min_distance << " radius " << radius << ": "
+                                 << sc.candidates().size() << " found, " << expected.size() << " expected");
+            CHECK(expected.size() > 20);
+            CHECK(same_pairs(sc.candidates(), expected));
+        }
+    }
+    // The filter removes pairs: at 2 cm every in-layer pair within 1.2 cm is gone, only
+    // pairs across the fold's two layers remain.
+    const auto unfiltered = brute_force_pairs(sc, mesh.positions, mesh.faces, 0.012, {});
+    CHECK(sc.candidates().size() < 0.6 * unfiltered.size());
+    CHECK_THROWS_AS(sc.set_rest_filter(rest.pattern.leftCols<2>(), {0, 1}, 0.01), drape::InvalidInput);
+    CHECK_THROWS_AS(sc.set_rest_filter(rest.pattern.leftCols<2>(), rest.piece, -1.0), drape::InvalidInput);
+}
+
+TEST_CASE("self-contact candidates reused after the cloth moved give the fresh results",
+          "[cloth][self_contact]") {
+    // Candidates collected at p0 with a generous radius, then used at p1 = p0 + a large
+    // translation + a small relative motion: the energy, its gradient and blocks, and the
+    // contact frames equal those of a fresh search at p1 (the per-vertex offsets may only
+    // skip pairs that cannot be within the thickness).
+    const ClothMesh mesh = test_fold(12, 0.1, 0.004, 0.0008, 9);
+    const Eigen::MatrixX3d& p0 = mesh.positions;
+    SelfContactParams params;
+    const double h = params.thickness_m;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    for (const Eigen::RowVector3d& translation : {Eigen::RowVector3d(0, 0, 0), Eigen::RowVector3d(0.3, -0.2, 0.5)}) {
+        Eigen::MatrixX3d p1 = p0;
+        for (int i = 0; i < p1.rows(); ++i)
+            p1.row(i) += translation + 0.0003 * Eigen::RowVector3d(unit(rng), unit(rng), unit(rng));
+        SelfContact reused(mesh.faces, mesh.vertex_count()), fresh(mesh.faces, mesh.vertex_count());
+        reused.find_candidates(p0, 3 * h);
+        // The translation does not count against the covered radius.
+        const double relative = 2 * (p1 - p0).rowwise().norm().maxCoeff();
+        CHECK(reused.covered_radius(p1) >= 3 * h - 2 * 0.0003 * std::sqrt(3.0) * (1 + 1e-9));
+        if (translation.norm() > 0) CHECK(reused.covered_radius(p1) > 3 * h - relative);
+        REQUIRE(reused.covered_radius(p1) > h);
+        fresh.find_candidates(p1, 1.01 * h);
+        const int n = 3 * mesh.vertex_count();
+        Eigen::VectorXd g_reused = Eigen::VectorXd::Zero(n), g_fresh = Eigen::VectorXd::Zero(n);
+        std::vector<PairHessian> b_reused, b_fresh;
+        const double e_reused = reused.energy(p1, params, &g_reused, &b_reused);
+        const double e_fresh = fresh.energy(p1, params, &g_fresh, &b_fresh);
+        INFO("translation " << translation << ": " << reused.candidates().size() << " vs "
+                            << fresh.candidates().size() << " candidates");
+        REQUIRE(e_fresh > 0);
+        CHECK(e_reused == Approx(e_fresh).epsilon(1e-12));
+        CHECK((g_reused - g_fresh).norm() <= 1e-12 * g_fresh.norm());
+        CHECK(b_reused.size() == b_fresh.size());
+        CHECK(reused.contact_frames(p1, h).size() == fresh.contact_frames(p1, h).size());
+        // The step bound from p1 stays conservative with the reused list.
+        Eigen::MatrixX3d dx(p1.rows(), 3);
+        for (int i = 0; i < p1.rows(); ++i) {
+            dx.row(i) << 0.002 * unit(rng), 0.002 * unit(rng), 0.002 * unit(rng);
+            if (p0(i, 2) > 0.0015) dx(i, 2) -= 0.008;  // the top layer through the bottom one
+        }
+        REQUIRE(min_pair_distance(reused, p1, mesh.faces) > 0.0005);
+        const double alpha = reused.max_safe_step(p1, dx, 0.9, 0.0005);
+        REQUIRE(alpha > 0);
+        CHECK(alpha < 1);
+        for (int k = 1; k <= 8; ++k)
+            CHECK(min_pair_distance(reused, p1 + alpha * k / 8.0 * dx, mesh.faces) >= 0.0005);
+    }
 }
 
 TEST_CASE("self-contact energy gradient matches finite differences over a mesh",
