@@ -106,15 +106,47 @@ double covered_run(const cv::Mat& mask, double length, int radius, double max_ga
 
 }  // namespace
 
-double sleeve_run(const cv::Mat& mask, const Eigen::Vector2d& shoulder,
-                  const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand, int radius,
-                  double max_gap, double* arm_length) {
-    const double l1 = (elbow - shoulder).norm(), l2 = (hand - elbow).norm();
-    *arm_length = l1 + l2;
-    return covered_run(mask, l1 + l2, radius, max_gap, [&](double s) -> Eigen::Vector2d {
-        return s <= l1 ? shoulder + (elbow - shoulder) * (l1 > 0 ? s / l1 : 0)
-                       : elbow + (hand - elbow) * (l2 > 0 ? (s - l1) / l2 : 0);
-    });
+double ArmRuns::max_fraction() const {
+    double best = 0;
+    for (int k = 0; k < 2; ++k)
+        if (length_px[k] > 0) best = std::max(best, run_px[k] / length_px[k]);
+    return best;
+}
+
+ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j) {
+    const double H = j.body_height_px();
+    const int radius = std::max(1, int(std::lround(0.008 * H)));
+    const double max_gap = 0.02 * H, beside = 0.015 * H;
+    // "Outward" = away from the torso's centre (half-way between mid-shoulder and mid-hip).
+    const Eigen::Vector2d centre = 0.5 * (j.mid_shoulder() + j.mid_hip());
+    const Joint arms[2][3] = {{Joint::right_shoulder, Joint::right_elbow, Joint::right_hand},
+                              {Joint::left_shoulder, Joint::left_elbow, Joint::left_hand}};
+    ArmRuns out;
+    for (int k = 0; k < 2; ++k) {
+        const Eigen::Vector2d a = j[arms[k][0]], b = j[arms[k][1]], c = j[arms[k][2]];
+        const double l1 = (b - a).norm(), l2 = (c - b).norm();
+        out.length_px[k] = l1 + l2;
+        double run = 0, gap_start = -1;
+        for (double s = 0; s <= l1 + l2; s += 1.0) {
+            const bool upper = s <= l1;
+            const double len = upper ? l1 : l2;
+            const Eigen::Vector2d from = upper ? a : b, to = upper ? b : c;
+            if (len <= 0) continue;
+            const Eigen::Vector2d d = (to - from) / len;
+            const Eigen::Vector2d p = from + d * (upper ? s : s - l1);
+            Eigen::Vector2d n(-d.y(), d.x());
+            if (n.dot(p - centre) < 0) n = -n;
+            if (covered(mask, p, radius) && covered(mask, p + beside * n, radius)) {
+                run = s;
+                gap_start = -1;
+            } else {
+                if (gap_start < 0) gap_start = s;
+                if (s - gap_start > max_gap) break;
+            }
+        }
+        out.run_px[k] = run;
+    }
+    return out;
 }
 
 }  // namespace detail
@@ -126,12 +158,7 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j) {
     GarmentShapeCues c;
     const double H = j.body_height_px();
     const int radius = std::max(1, int(std::lround(0.008 * H)));
-    double len_r = 0, len_l = 0;
-    const double run_r = sleeve_run(mask, j[Joint::right_shoulder], j[Joint::right_elbow],
-                                    j[Joint::right_hand], radius, 0.02 * H, &len_r);
-    const double run_l = sleeve_run(mask, j[Joint::left_shoulder], j[Joint::left_elbow],
-                                    j[Joint::left_hand], radius, 0.02 * H, &len_l);
-    c.sleeve_fraction = std::max(len_r > 0 ? run_r / len_r : 0.0, len_l > 0 ? run_l / len_l : 0.0);
+    c.sleeve_fraction = sleeve_runs(mask, j).max_fraction();
     const double hip_y = j.mid_hip().y(), ankle_y = j.mid_ankle().y(),
                  sh_y = j.mid_shoulder().y();
     const int bottom = row_percentile(mask, 0.98), top = row_percentile(mask, 0.02);

@@ -36,7 +36,6 @@ GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, con
     const double nan = std::numeric_limits<double>::quiet_NaN();
     GarmentFeatures f;
     f.body_height_px = j.body_height_px();
-    const double H = f.body_height_px;
     // Extent: first and last rows at least 5 % as wide as the widest row (and >= 3 px).
     int top = -1, bottom = -1, widest = 0;
     for (int y = 0; y < mask.rows; ++y) widest = std::max(widest, row_width(mask, y));
@@ -69,14 +68,8 @@ GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, con
     f.sleeve_length_px = nan;
     f.neckline_depth_px = nan;
     f.inseam_px = nan;
-    const int radius = std::max(1, int(std::lround(0.008 * H)));
     if (part != GarmentPart::lower) {
-        double lr = 0, ll = 0;
-        const double rr = sleeve_run(mask, j[Joint::right_shoulder], j[Joint::right_elbow],
-                                     j[Joint::right_hand], radius, 0.02 * H, &lr);
-        const double rl = sleeve_run(mask, j[Joint::left_shoulder], j[Joint::left_elbow],
-                                     j[Joint::left_hand], radius, 0.02 * H, &ll);
-        f.sleeve_length_px = std::max(rr, rl);
+        f.sleeve_length_px = sleeve_runs(mask, j).max_run_px();
         const Eigen::Vector2d neck = j[Joint::neck];
         for (double y = neck.y(); y < j.mid_hip().y(); y += 1.0)
             if (covered(mask, {neck.x(), y}, 1)) { f.neckline_depth_px = y - neck.y(); break; }

@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <algorithm>
 #include <vector>
 
 namespace drape::vision::detail {
@@ -29,10 +30,21 @@ double polyline_x_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
 /// Mid-point between the legs at row y (each leg: hip -> knee -> ankle).
 Eigen::Vector2d between_legs(const Joints& j, double y);
 
-/// Length along one arm (shoulder -> elbow -> hand) covered by the mask continuously from
-/// the shoulder, allowing gaps of `max_gap` px; and the arm's length.
-double sleeve_run(const cv::Mat& mask, const Eigen::Vector2d& shoulder,
-                  const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand, int radius,
-                  double max_gap, double* arm_length);
+/// How far a garment runs down each arm from the shoulder (docs/vision.md, "Garment type").
+struct ArmRuns {
+    double run_px[2] = {0, 0};     ///< covered length from the shoulder, right and left arm
+    double length_px[2] = {0, 0};  ///< shoulder -> elbow -> hand length, right and left arm
+    /// The longer run as a fraction of its arm's length (0 for degenerate arms).
+    double max_fraction() const;
+    double max_run_px() const { return std::max(run_px[0], run_px[1]); }
+};
+
+/// Walks each arm (shoulder -> elbow -> hand, every pixel) while the mask covers it,
+/// bridging gaps up to 2 % of the body height: a point counts when the mask lies within
+/// 0.8 % H of the arm line and within 0.8 % H of the point 1.5 % H beside it on the side
+/// away from the body's centre. A sleeve wraps the arm, so garment lies across the arm's
+/// outer half (an arm is ~5 % H wide); a torso beside a hanging arm, or hair behind a
+/// raised one, touches the arm line from one side only and no longer lengthens the run.
+ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& joints);
 
 }  // namespace drape::vision::detail

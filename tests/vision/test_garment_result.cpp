@@ -141,3 +141,37 @@ TEST_CASE("a long garment that widens from the thighs to the knees is a skirt", 
     mini.rowRange(380, mini.rows).setTo(0);
     CHECK(measure_shape_cues(mini, pants.joints).knee_width_ratio == 0);
 }
+
+TEST_CASE("a sleeve wraps the arm: a torso beside a hanging arm is no sleeve", "[vision][garments][classify]") {
+    // Both arms hang straight down beside a tank top's torso, their lines 3 px outside its
+    // sides: within the 0.8 % H (4 px) disc of the arm line all the way to the hands, but
+    // nothing lies on the arms' outer halves.
+    test::SyntheticFigure f = test::make_figure();
+    using J = Joint;
+    f.joints[J::right_shoulder] = {158, 125};
+    f.joints[J::right_elbow] = {158, 215};
+    f.joints[J::right_hand] = {158, 300};
+    f.joints[J::left_shoulder] = {242, 125};
+    f.joints[J::left_elbow] = {242, 215};
+    f.joints[J::left_hand] = {242, 300};
+    cv::Mat tank = cv::Mat::zeros(f.labels.size(), CV_8UC1);
+    cv::rectangle(tank, cv::Point(161, 118), cv::Point(239, 310), cv::Scalar(255), cv::FILLED);
+    const GarmentShapeCues tc = measure_shape_cues(tank, f.joints);
+    CHECK(tc.sleeve_fraction < 0.12);
+    CHECK(classify_upper(tc) == GarmentType::tank_top);
+    CHECK(measure_features(tank, GarmentType::tank_top, f.joints).sleeve_length_px < 10);
+    // Short sleeves (26 px wide) over the upper 40 % of the upper arms: a t-shirt.
+    cv::Mat tee = tank.clone();
+    cv::rectangle(tee, cv::Point(145, 118), cv::Point(171, 161), cv::Scalar(255), cv::FILLED);
+    cv::rectangle(tee, cv::Point(229, 118), cv::Point(255, 161), cv::Scalar(255), cv::FILLED);
+    const GarmentShapeCues sc = measure_shape_cues(tee, f.joints);
+    CHECK(sc.sleeve_fraction == Approx(36.0 / 175).margin(0.05));
+    CHECK(classify_upper(sc) == GarmentType::t_shirt);
+    // Sleeves down to the wrists, still beside the torso: long sleeves.
+    cv::Mat longs = tank.clone();
+    cv::line(longs, cv::Point(158, 125), cv::Point(158, 300), cv::Scalar(255), 24);
+    cv::line(longs, cv::Point(242, 125), cv::Point(242, 300), cv::Scalar(255), 24);
+    const GarmentShapeCues lc = measure_shape_cues(longs, f.joints);
+    CHECK(lc.sleeve_fraction > 0.95);
+    CHECK(classify_upper(lc) == GarmentType::long_sleeve_top);
+}

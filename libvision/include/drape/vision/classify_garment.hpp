@@ -10,8 +10,11 @@ namespace drape::vision {
 
 /// Measurements the classifier uses (also reported as features).
 struct GarmentShapeCues {
-    /// Longest run of garment pixels from the shoulder down the arm (shoulder -> elbow ->
-    /// hand polyline, sampled every pixel), as a fraction of the arm length; max of both arms.
+    /// Longest run of garment from the shoulder down the arm (shoulder -> elbow -> hand
+    /// polyline, sampled every pixel), as a fraction of the arm length; max of both arms.
+    /// A point of the arm is covered when the garment lies on the arm line and on its outer
+    /// half, 1.5 % of the body height beside it away from the torso (a sleeve wraps the
+    /// arm; a torso next to a hanging arm or hair behind a raised one touch one side).
     double sleeve_fraction = 0;
     /// Lowest garment row (98th percentile) below the mid-hip, as a fraction of the
     /// mid-hip -> mid-ankle height (0 at the hips, 1 at the ankles).
