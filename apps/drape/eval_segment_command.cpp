@@ -110,6 +110,7 @@ Parse parse_of(const cv::Mat& labels, const LabelTable& t, const vision::Joints&
                const std::vector<std::pair<int, GarmentType>>& known) {
     Parse p;
     const double min_area = 0.002 * double(labels.total());
+    const cv::Mat hiding = vision::sleeve_hiding_mask(labels, t);
     const std::pair<GarmentPart, LabelRole> parts[] = {{GarmentPart::upper, LabelRole::upper_garment},
                                                        {GarmentPart::lower, LabelRole::lower_garment},
                                                        {GarmentPart::full, LabelRole::full_garment}};
@@ -121,8 +122,8 @@ Parse parse_of(const cv::Mat& labels, const LabelTable& t, const vision::Joints&
         auto it = std::find_if(known.begin(), known.end(), [id](const auto& k) { return k.first == id; });
         if (it != known.end()) p.types[part] = it->second;
         else if (part == GarmentPart::upper)
-            p.types[part] = vision::classify_upper(vision::measure_shape_cues(m, joints));
-        else p.types[part] = vision::garment_type_of_class(m, id, t, joints);
+            p.types[part] = vision::classify_upper(vision::measure_shape_cues(m, joints, hiding));
+        else p.types[part] = vision::garment_type_of_class(m, id, t, joints, hiding);
     }
     return p;
 }
@@ -162,6 +163,8 @@ nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv:
     const Parse pred = parse_of(seg.labels, table, joints, seg.garment_types);
     nlohmann::json per = nlohmann::json::array();
     double photo_sum = 0;
+    const cv::Mat gt_hiding = vision::sleeve_hiding_mask(gt, table),
+                  pred_hiding = vision::sleeve_hiding_mask(seg.labels, table);
     for (const auto& [part, gt_mask] : truth.masks) {
         cv::Mat pm;
         if (part == GarmentPart::full) {
@@ -191,8 +194,8 @@ nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv:
         }
         per.push_back({{"true_type", std::string(vision::to_string(tt))},
                        {"predicted_type", pt}, {"type_correct", right}, {"iou", v},
-                       {"true_cues", cues_json(vision::measure_shape_cues(gt_mask, joints))},
-                       {"cues", cues_json(vision::measure_shape_cues(pm, joints))}});
+                       {"true_cues", cues_json(vision::measure_shape_cues(gt_mask, joints, gt_hiding))},
+                       {"cues", cues_json(vision::measure_shape_cues(pm, joints, pred_hiding))}});
         photo_sum += v;
         totals.iou_sum += v;
         totals.garments += 1;

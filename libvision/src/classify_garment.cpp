@@ -113,7 +113,7 @@ double ArmRuns::max_fraction() const {
     return best;
 }
 
-ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j) {
+ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j, const cv::Mat& hiding) {
     const double H = j.body_height_px();
     const int radius = std::max(1, int(std::lround(0.008 * H)));
     const double max_gap = 0.02 * H, beside = 0.015 * H;
@@ -139,6 +139,8 @@ ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j) {
             if (covered(mask, p, radius) && covered(mask, p + beside * n, radius)) {
                 run = s;
                 gap_start = -1;
+            } else if (!hiding.empty() && covered(hiding, p, 0)) {
+                gap_start = -1;  // hidden, not bare: unknown, the walk goes on
             } else {
                 if (gap_start < 0) gap_start = s;
                 if (s - gap_start > max_gap) break;
@@ -151,14 +153,26 @@ ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j) {
 
 }  // namespace detail
 
-GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j) {
+cv::Mat sleeve_hiding_mask(const cv::Mat& labels, const LabelTable& table) {
+    require(!labels.empty() && labels.type() == CV_8UC1, "sleeve_hiding_mask: labels must be CV_8UC1");
+    cv::Mat out = cv::Mat::zeros(labels.size(), CV_8UC1);
+    for (size_t i = 0; i < labels.total(); ++i) {
+        const LabelRole r = table.role(labels.data[i]);
+        if (r == LabelRole::hair || r == LabelRole::occluder) out.data[i] = 255;
+    }
+    return out;
+}
+
+GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j, const cv::Mat& hiding) {
     using namespace detail;
     require(!full_mask.empty() && full_mask.type() == CV_8UC1, "measure_shape_cues: mask must be CV_8UC1");
+    require(hiding.empty() || (hiding.type() == CV_8UC1 && hiding.size() == full_mask.size()),
+            "measure_shape_cues: the hiding mask must be empty or CV_8UC1 of the mask's size");
     const cv::Mat mask = main_pieces(full_mask);
     GarmentShapeCues c;
     const double H = j.body_height_px();
     const int radius = std::max(1, int(std::lround(0.008 * H)));
-    c.sleeve_fraction = sleeve_runs(mask, j).max_fraction();
+    c.sleeve_fraction = sleeve_runs(mask, j, hiding).max_fraction();
     const double hip_y = j.mid_hip().y(), ankle_y = j.mid_ankle().y(),
                  sh_y = j.mid_shoulder().y();
     const int bottom = row_percentile(mask, 0.98), top = row_percentile(mask, 0.02);

@@ -29,9 +29,12 @@ std::vector<std::pair<std::string, std::pair<double, double>>> GarmentFeatures::
     return out;
 }
 
-GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, const Joints& j) {
+GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, const Joints& j,
+                                 const cv::Mat& hiding) {
     using namespace detail;
     require(!full_mask.empty() && full_mask.type() == CV_8UC1, "measure_features: mask must be CV_8UC1");
+    require(hiding.empty() || (hiding.type() == CV_8UC1 && hiding.size() == full_mask.size()),
+            "measure_features: the hiding mask must be empty or CV_8UC1 of the mask's size");
     const cv::Mat mask = main_pieces(full_mask);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     GarmentFeatures f;
@@ -69,7 +72,7 @@ GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, con
     f.neckline_depth_px = nan;
     f.inseam_px = nan;
     if (part != GarmentPart::lower) {
-        f.sleeve_length_px = sleeve_runs(mask, j).max_run_px();
+        f.sleeve_length_px = sleeve_runs(mask, j, hiding).max_run_px();
         const Eigen::Vector2d neck = j[Joint::neck];
         for (double y = neck.y(); y < j.mid_hip().y(); y += 1.0)
             if (covered(mask, {neck.x(), y}, 1)) { f.neckline_depth_px = y - neck.y(); break; }

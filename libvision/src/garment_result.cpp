@@ -25,7 +25,7 @@ bool GarmentOptions::is_valid(std::string* why) const {
 }
 
 GarmentType garment_type_of_class(const cv::Mat& mask, int label_id, const LabelTable& table,
-                                  const Joints& joints) {
+                                  const Joints& joints, const cv::Mat& hiding) {
     const std::string& name = table.name(label_id);
     if (table.role(label_id) == LabelRole::full_garment) return GarmentType::dress;
     if (name == "skirt") return GarmentType::skirt;
@@ -33,7 +33,7 @@ GarmentType garment_type_of_class(const cv::Mat& mask, int label_id, const Label
     if (table.role(label_id) == LabelRole::lower_garment) return GarmentType::pants;
     require(table.role(label_id) == LabelRole::upper_garment, "class ", label_id, " ('", name,
             "') is not a garment class");
-    return classify_upper(measure_shape_cues(mask, joints));
+    return classify_upper(measure_shape_cues(mask, joints, hiding));
 }
 
 namespace {
@@ -86,6 +86,7 @@ std::vector<GarmentResult> describe_garments(const cv::Mat& image, const Segment
         ++counts[*it];
     const double min_area = options.min_area_fraction * double(seg.labels.total());
     const double H = joints.body_height_px();
+    const cv::Mat hiding = sleeve_hiding_mask(seg.labels, table);
     std::vector<GarmentResult> out;
     for (int id = 0; id < kUnmarked; ++id) {
         const LabelRole role = table.role(id);
@@ -101,10 +102,10 @@ std::vector<GarmentResult> describe_garments(const cv::Mat& image, const Segment
         auto listed = std::find_if(seg.garment_types.begin(), seg.garment_types.end(),
                                    [id](const auto& p) { return p.first == id; });
         g.type = listed != seg.garment_types.end() ? listed->second
-                                                   : garment_type_of_class(mask, id, table, joints);
+                                                   : garment_type_of_class(mask, id, table, joints, hiding);
         if (hint && part_of(*hint) == part_of(g.type)) g.type = *hint;
-        g.cues = measure_shape_cues(mask, joints);
-        g.features = measure_features(mask, g.type, joints);
+        g.cues = measure_shape_cues(mask, joints, hiding);
+        g.features = measure_features(mask, g.type, joints, hiding);
         g.silhouette = silhouette(mask, options.polygon_tolerance_fraction * H);
         // Hidden part: pixels inside the outer outlines that are not this garment.
         cv::Mat filled = cv::Mat::zeros(mask.size(), CV_8UC1);

@@ -43,8 +43,10 @@ struct ArmRuns {
 /// bridging gaps up to 2 % of the body height: a point counts when the mask lies within
 /// 0.8 % H of the arm line and within 0.8 % H of the point 1.5 % H beside it on the side
 /// away from the body's centre. A sleeve wraps the arm, so garment lies across the arm's
-/// outer half (an arm is ~5 % H wide); a torso beside a hanging arm, or hair behind a
-/// raised one, touches the arm line from one side only and no longer lengthens the run.
-ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& joints);
+/// outer half (an arm is ~5 % H wide); a torso beside a hanging arm touches the arm line
+/// from one side only and no longer lengthens the run.
+/// Where `hiding` (optional, hair and occluders) lies on the arm line itself the walk goes
+/// on without counting a gap or growing the run.
+ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& joints, const cv::Mat& hiding = cv::Mat());
 
 }  // namespace drape::vision::detail

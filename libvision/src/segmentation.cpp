@@ -555,7 +555,7 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
                 result.labels.setTo(o.table.background_id(), mask);
                 continue;
             }
-            const GarmentShapeCues cues = measure_shape_cues(mask, joints);
+            const GarmentShapeCues cues = measure_shape_cues(mask, joints, result.labels == hair);
             GarmentType t = part == GarmentPart::upper ? classify_upper(cues) : classify_lower(cues);
             if (o.hint && part_of(*o.hint) == part) t = *o.hint;
             assign(mask, t);

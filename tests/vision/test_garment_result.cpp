@@ -1,3 +1,4 @@
+#include <drape/core/errors.hpp>
 #include <drape/vision/garment_result.hpp>
 
 #include "synthetic_figure.hpp"
@@ -6,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <tuple>
 
 using namespace drape;
 using namespace drape::vision;
@@ -174,4 +176,38 @@ TEST_CASE("a sleeve wraps the arm: a torso beside a hanging arm is no sleeve", "
     const GarmentShapeCues lc = measure_shape_cues(longs, f.joints);
     CHECK(lc.sleeve_fraction > 0.95);
     CHECK(classify_upper(lc) == GarmentType::long_sleeve_top);
+}
+
+TEST_CASE("hair over the shoulders hides a sleeve but does not end it", "[vision][garments][classify]") {
+    // Long sleeves on both arms, with hair (class 19) hanging over both shoulders and the
+    // upper arms for 30 px (> the 2 % H gap a run bridges).
+    const test::SyntheticFigure f = test::make_figure();
+    using J = Joint;
+    const auto p = [&](J j) { return cv::Point(int(f.joints[j].x()), int(f.joints[j].y())); };
+    cv::Mat labels = f.labels.clone();
+    for (const auto& [s, e, h] : {std::tuple{J::right_shoulder, J::right_elbow, J::right_hand},
+                                  std::tuple{J::left_shoulder, J::left_elbow, J::left_hand}}) {
+        cv::line(labels, p(s), p(e), cv::Scalar(51), 26);
+        cv::line(labels, p(e), p(h), cv::Scalar(51), 24);
+        const Eigen::Vector2d d = (f.joints[e] - f.joints[s]).normalized();
+        const Eigen::Vector2d a = f.joints[s] + 5 * d, b = f.joints[s] + 35 * d;
+        cv::line(labels, cv::Point(int(a.x()), int(a.y())), cv::Point(int(b.x()), int(b.y())),
+                 cv::Scalar(19), 30);
+    }
+    const cv::Mat top = labels == 51;
+    const cv::Mat hiding = sleeve_hiding_mask(labels, LabelTable::fashionista());
+    CHECK(cv::countNonZero(hiding & (labels != 19)) == 0);
+    // Without the hair mask the run stops under the hair: no sleeve.
+    CHECK(classify_upper(measure_shape_cues(top, f.joints)) == GarmentType::tank_top);
+    const GarmentShapeCues c = measure_shape_cues(top, f.joints, hiding);
+    CHECK(c.sleeve_fraction > 0.9);
+    CHECK(classify_upper(c) == GarmentType::long_sleeve_top);
+    CHECK(measure_features(top, GarmentType::long_sleeve_top, f.joints, hiding).sleeve_length_px > 150);
+    // Hair over a bare arm is no sleeve: the run stays at the shoulder.
+    cv::Mat bare = labels.clone();
+    bare.setTo(41, (labels == 51) & ~(f.labels == 51));  // the added sleeves back to skin
+    CHECK(classify_upper(measure_shape_cues(bare == 51, f.joints, hiding)) != GarmentType::long_sleeve_top);
+    // A hiding mask of the wrong size is rejected.
+    CHECK_THROWS_AS(measure_shape_cues(top, f.joints, cv::Mat(10, 10, CV_8UC1, cv::Scalar(0))),
+                    InvalidInput);
 }

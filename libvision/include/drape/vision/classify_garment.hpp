@@ -3,6 +3,7 @@
 
 #include <drape/vision/garment_type.hpp>
 #include <drape/vision/joints.hpp>
+#include <drape/vision/label_table.hpp>
 
 #include <opencv2/core.hpp>
 
@@ -14,7 +15,8 @@ struct GarmentShapeCues {
     /// polyline, sampled every pixel), as a fraction of the arm length; max of both arms.
     /// A point of the arm is covered when the garment lies on the arm line and on its outer
     /// half, 1.5 % of the body height beside it away from the torso (a sleeve wraps the
-    /// arm; a torso next to a hanging arm or hair behind a raised one touch one side).
+    /// arm; a torso next to a hanging arm touches one side). Hair or occluders on the arm
+    /// line (measure_shape_cues' `hiding`) neither grow nor end the run.
     double sleeve_fraction = 0;
     /// Lowest garment row (98th percentile) below the mid-hip, as a fraction of the
     /// mid-hip -> mid-ankle height (0 at the hips, 1 at the ankles).
@@ -41,7 +43,16 @@ struct GarmentShapeCues {
 
 /// Measures the cues of a garment mask (CV_8UC1, non-zero = garment); connected pieces
 /// smaller than 15 % of the largest are ignored (here and in measure_features).
-GarmentShapeCues measure_shape_cues(const cv::Mat& mask, const Joints& joints);
+/// \param hiding optional CV_8UC1 mask of the mask's size (empty = none) of pixels that may
+///        hide the garment (hair, occluders; sleeve_hiding_mask): where one lies on an
+///        arm's line the sleeve run neither grows nor breaks (long hair over a shoulder
+///        does not end the sleeve that shows below it).
+GarmentShapeCues measure_shape_cues(const cv::Mat& mask, const Joints& joints,
+                                    const cv::Mat& hiding = cv::Mat());
+
+/// Pixels of a label map (CV_8UC1 class ids) whose class may hide a sleeve: hair and
+/// occluders (LabelRole::hair, LabelRole::occluder), as CV_8UC1 0/255.
+cv::Mat sleeve_hiding_mask(const cv::Mat& labels, const LabelTable& table);
 
 /// Upper garment: tank top if sleeve_fraction < 0.12, long-sleeve top if >= 0.6, else t-shirt.
 GarmentType classify_upper(const GarmentShapeCues& cues);

@@ -38,6 +38,8 @@ struct GarmentFeatures {
 };
 
 /// Measures the features of a garment mask (CV_8UC1, non-zero = garment) of the given type.
-GarmentFeatures measure_features(const cv::Mat& mask, GarmentType type, const Joints& joints);
+/// \param hiding as for measure_shape_cues (the sleeve length bridges hair and occluders).
+GarmentFeatures measure_features(const cv::Mat& mask, GarmentType type, const Joints& joints,
+                                 const cv::Mat& hiding = cv::Mat());
 
 }  // namespace drape::vision

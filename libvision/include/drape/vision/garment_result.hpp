@@ -59,8 +59,9 @@ std::vector<GarmentResult> describe_garments(const cv::Mat& image_bgr, const Seg
                                              const GarmentOptions& options,
                                              const std::optional<GarmentType>& hint = {});
 
-/// Garment type of a labelled garment class (see describe_garments).
+/// Garment type of a labelled garment class (see describe_garments); `hiding` as for
+/// measure_shape_cues.
 GarmentType garment_type_of_class(const cv::Mat& mask, int label_id, const LabelTable& table,
-                                  const Joints& joints);
+                                  const Joints& joints, const cv::Mat& hiding = cv::Mat());
 
 }  // namespace drape::vision
