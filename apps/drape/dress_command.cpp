@@ -1,7 +1,7 @@
 // drape dress --garment skirt|pants|tshirt|dress --sizing G.json|auto --material NAME|PATH
 //             [--materials DIR] [--body P.json] [--pose NAME|POSE.json] [--edge CM]
 //             [--no-render] [--save-dressed] --out DIR
-// drape eval-dress [--garments LIST] [--poses LIST] [--edge CM] [--material NAME|PATH]
+// drape eval-dress [--garments LIST] [--poses LIST] [--bodies LIST] [--edge CM] [--material NAME|PATH]
 //             [--materials DIR] --out DIR   (the templates x bodies x poses table)
 #include "body_json.hpp"
 #include "commands.hpp"
@@ -374,6 +374,7 @@ void run_dress_outfit(const DressArgs& args) {
 struct EvalDressArgs {
     std::vector<std::string> garments = {"skirt", "pants", "tshirt", "dress"};
     std::vector<std::string> poses = {"a_pose", "arms_down", "walking"};
+    std::vector<std::string> bodies;  // empty: all of kEvalBodies
     std::string material = "gray-interlock";
     std::string materials_dir;
     double edge_cm = 4.0;
@@ -386,6 +387,12 @@ using garment::kEvalBodies;
 
 void run_eval_dress(const EvalDressArgs& args) {
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    const auto selected = [&](const EvalBody& eb) {
+        return args.bodies.empty() || std::find(args.bodies.begin(), args.bodies.end(), eb.name) != args.bodies.end();
+    };
+    for (const std::string& b : args.bodies)
+        require(std::any_of(std::begin(kEvalBodies), std::end(kEvalBodies), [&](const EvalBody& eb) { return b == eb.name; }),
+                "--bodies: unknown body '", b, "' (female_p5, female_p50, female_p95, male_p5, male_p95)");
     std::vector<GarmentType> types;
     for (const std::string& g : args.garments) types.push_back(garment_type_from_name(g));
     std::vector<body::Pose> poses;
@@ -403,6 +410,7 @@ void run_eval_dress(const EvalDressArgs& args) {
     int usable = 0, total = 0;
     double seconds_sum = 0;
     for (const EvalBody& eb : kEvalBodies) {
+        if (!selected(eb)) continue;
         body::SemanticRequest request;
         request.gender = eb.gender;
         request[body::Semantic::height_m] = eb.height_m;
@@ -464,7 +472,7 @@ void run_eval_dress(const EvalDressArgs& args) {
         }
     }
     // The outfit (t-shirt over pants) on the median woman in every pose.
-    if (args.outfit) {
+    if (args.outfit && selected(kEvalBodies[1])) {
         const EvalBody& eb = kEvalBodies[1];
         body::SemanticRequest request;
         request.gender = eb.gender;
@@ -536,6 +544,9 @@ void add_eval_dress_command(CLI::App& app) {
                       "results.json and one render per template and pose (the median woman)");
     cmd->add_option("--garments", args->garments, "templates (default: skirt pants tshirt dress)");
     cmd->add_option("--poses", args->poses, "poses (default: a_pose arms_down walking)");
+    cmd->add_option("--bodies", args->bodies,
+                    "evaluation bodies (default: female_p5 female_p50 female_p95 male_p5 male_p95; the outfit only "
+                    "with female_p50)");
     cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 4)");
     cmd->add_option("--material", args->material, "fabric name or file (default gray-interlock)");
     cmd->add_flag("!--no-outfit", args->outfit, "skip the outfit (t-shirt over pants on the median woman)");
