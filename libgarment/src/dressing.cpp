@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <initializer_list>
+#include <map>
 #include <cstdint>
 #include <cmath>
 #include <limits>
@@ -27,6 +28,7 @@ namespace {
 
 using body::Joint;
 using body::index;
+constexpr double kPi = 3.14159265358979323846;
 constexpr double kStitchWeight = 20.0;  // ARAP weight of a stitch relative to a cloth edge
 
 // Nearest body vertex (brute force over the body, parallel-free and exact).
@@ -228,6 +230,80 @@ int guarded_moves(const GarmentMesh& mesh, const Eigen::MatrixX3d& to, Eigen::Ma
     return not_moved;
 }
 
+constexpr double kArmholeBlendCm = 8.0;  // torso panels follow their armhole this far in
+
+// Opens each armhole into a loop around its arm root. Wrapped on the torso ellipse, a torso
+// panel's armhole edge is a straight line up the side seam, the front and back armholes on
+// top of each other (a slit), and in A-pose that line runs through the upper arm (1-3 cm
+// from its axis on the 5th-percentile man). Which side of the arm each armhole vertex then
+// took was left to the push-out (the nearest body normal): on his right both armholes went
+// behind and below the arm axis, cap stitches up to 175 degrees apart about it, and sewing
+// the cap pulled cloth through the arm root (47 mm inside). Here every armhole vertex
+// (a torso vertex stitched to a sleeve) is turned about its posed arm axis to the angle
+// of its place along the armhole -- underarm below the axis, the middle of the front
+// armhole in front of it, of the back armhole behind it, the shoulder point above it, as
+// the sleeve cap is laid around the arm -- keeping its distance along and from the axis,
+// then moved radially outside the arm. The panel within kArmholeBlendCm (pattern space) of
+// its armhole follows with a smoothly decreasing share of its nearest armhole vertex's move.
+void open_armholes(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
+                   const detail::AxisEnvelope arms[2], double clearance, Eigen::MatrixX3d& X) {
+    const int nv = int(X.rows());
+    const auto panel_v = [&](int v) { return size_t(mesh.panel_of_vertex(v)); };
+    const auto role_v = [&](int v) { return detail::role_of(pattern, pattern.panels[panel_v(v)].name); };
+    // Armhole vertices: torso vertex -> arm (0 left, 1 right).
+    std::vector<int> arm_of(size_t(nv), -1);
+    for (const auto& st : mesh.stitches)
+        for (int k = 0; k < 2; ++k) {
+            const int t = st[size_t(k)], sl = st[size_t(1 - k)];
+            if (role_v(t) == detail::Role::torso && role_v(sl) == detail::Role::sleeve)
+                arm_of[size_t(t)] = pattern.placements[panel_v(sl)].body_part == BodyPart::left_sleeve ? 0 : 1;
+        }
+    // Extent of each armhole along its panel's pattern y (underarm -> shoulder point).
+    std::map<std::pair<size_t, int>, std::pair<double, double>> span;
+    for (int v = 0; v < nv; ++v) {
+        if (arm_of[size_t(v)] < 0) continue;
+        auto it = span.try_emplace({panel_v(v), arm_of[size_t(v)]}, 1e300, -1e300).first;
+        it->second.first = std::min(it->second.first, mesh.panel_point_cm(v, 1));
+        it->second.second = std::max(it->second.second, mesh.panel_point_cm(v, 1));
+    }
+    Eigen::MatrixX3d move = Eigen::MatrixX3d::Zero(nv, 3);
+    std::vector<int> hole;
+    for (int v = 0; v < nv; ++v) {
+        const int arm = arm_of[size_t(v)];
+        if (arm < 0) continue;
+        hole.push_back(v);
+        const Eigen::Vector3d c = skel.joints.row(index(arm == 0 ? Joint::left_shoulder : Joint::right_shoulder)).transpose();
+        const Eigen::Vector3d e = skel.joints.row(index(arm == 0 ? Joint::left_elbow : Joint::right_elbow)).transpose();
+        const Eigen::Vector3d a = (e - c).normalized();
+        const Eigen::Vector3d up = (Eigen::Vector3d::UnitY() - a.y() * a).normalized();
+        Eigen::Vector3d front = a.cross(up);
+        if (front.z() < 0) front = -front;
+        const auto [lo, hi] = span.at({panel_v(v), arm});
+        const double u = hi > lo ? std::clamp((mesh.panel_point_cm(v, 1) - lo) / (hi - lo), 0.0, 1.0) : 0.5;
+        const bool back = pattern.placements[panel_v(v)].body_part == BodyPart::back_torso;
+        const double phi = (back ? -1.0 : 1.0) * kPi * (1 - u);  // from up, towards front
+        const Eigen::Vector3d p = X.row(v).transpose();
+        const double s = (p - c).dot(a), r = (p - c - s * a).norm();
+        const Eigen::Vector3d turned = c + s * a + r * (std::cos(phi) * up + std::sin(phi) * front);
+        move.row(v) = (arms[arm].push(turned, clearance, kSoftM) - p).transpose();
+    }
+    if (hole.empty()) return;
+    for (int v = 0; v < nv; ++v) {
+        if (role_v(v) != detail::Role::torso || arm_of[size_t(v)] >= 0) continue;
+        double best = 1e300;
+        int nearest = -1;
+        for (int h : hole) {
+            if (panel_v(h) != panel_v(v)) continue;
+            const double d = (mesh.panel_point_cm.row(h) - mesh.panel_point_cm.row(v)).norm();
+            if (d < best) best = d, nearest = h;
+        }
+        if (nearest < 0 || best >= kArmholeBlendCm) continue;
+        const double w = 1 - best / kArmholeBlendCm;
+        move.row(v) = w * w * (3 - 2 * w) * move.row(nearest);
+    }
+    X += move;
+}
+
 void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
                         const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
                         const Eigen::VectorXd& pelvis_weight, double clearance, Eigen::MatrixX3d& X) {
@@ -281,6 +357,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
         X.row(v) = q.transpose();
     }
     if (!any_sleeve) return;
+    open_armholes(pattern, mesh, skel, arms, clearance, X);
     // Sleeves: tubes around the posed arms, their caps open. Each sleeve starts as close to
     // the armhole as it can while every point of it, pushed outside its arm, stays
     // kLayerGapM outside the torso panels (an envelope about the trunk axis); the simulation
@@ -657,7 +734,13 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
         for (int v = 0; v < nv; ++v)
             if (detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve)
                 X.row(v) = placed.row(v);
-        guarded_moves(mesh, placed, X);
+        // A vertex whose move would cross a neighbour that has not moved yet (the two sides
+        // of an armhole start on one line) gets another pass once they have.
+        for (int pass = 0, left = nv; pass < 4 && left > 0; ++pass) {
+            const int now = guarded_moves(mesh, placed, X);
+            if (now >= left) break;
+            left = now;
+        }
     }
 
     // 4. Interpenetration removal: push offending vertices out along the body normal and
