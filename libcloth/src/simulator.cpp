@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <chrono>
 #include <cmath>
@@ -30,6 +31,9 @@ using Clock = std::chrono::steady_clock;
 // Self-contact candidates are collected this many thicknesses beyond the radius a Newton
 // iteration needs, so that they can be reused while the cloth moves less than half of it.
 constexpr double kCandidateMargin = 1.0;
+// A vertex's second contact plane of a step is made only for a surface facing the first
+// one: normals more than 90 degrees apart (a pinch), not a neighbouring patch of one surface.
+constexpr double kFacingPlanesCos = 0.0;
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -208,7 +212,12 @@ struct Simulator::Impl {
     // incremental potential changes only when a plane is added (Newton then converges
     // quadratically; the exact distance with its Gauss-Newton Hessian converged linearly).
     // The static solve renews them every few iterations as the cloth slides.
-    std::vector<int> plane_of_vertex;              // -1: none
+    // A vertex squeezed between two surfaces that face each other (the armpit, between arm
+    // and torso) gets a second plane when, during the step, its closest point moves to the
+    // other surface: with one plane per step it was pushed out of one surface into the
+    // other, and out of that one at the next step, a period-2 chatter that never came to
+    // rest (docs/cloth.md).
+    std::vector<std::array<int, 2>> plane_of_vertex;  // -1: none
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> planes;  // (point, normal)
     double query_radius = 0;
     Eigen::MatrixX3d step_start;          // x at the start of the step (friction, drag)
@@ -392,13 +401,17 @@ struct Simulator::Impl {
             c.stiffness = options.contact_stiffness_n_per_m3 * area(i);
         }, 64);
         {
-            plane_of_vertex.resize(static_cast<std::size_t>(p.rows()), -1);
-            for (const VertexContact& c : contacts)
-                if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h &&
-                    plane_of_vertex[static_cast<std::size_t>(c.vertex)] < 0) {
-                    plane_of_vertex[static_cast<std::size_t>(c.vertex)] = static_cast<int>(planes.size());
-                    planes.emplace_back(c.point, c.normal);
-                }
+            plane_of_vertex.resize(static_cast<std::size_t>(p.rows()), {-1, -1});
+            for (const VertexContact& c : contacts) {
+                if (c.vertex < 0 || c.stiffness <= 0 || c.distance >= h) continue;
+                std::array<int, 2>& own = plane_of_vertex[static_cast<std::size_t>(c.vertex)];
+                const bool add = own[0] < 0 ||
+                                 (own[1] < 0 && planes[static_cast<std::size_t>(own[0])].second.dot(c.normal) <
+                                                    kFacingPlanesCos);
+                if (!add) continue;
+                own[own[0] < 0 ? 0 : 1] = static_cast<int>(planes.size());
+                planes.emplace_back(c.point, c.normal);
+            }
         }
     }
 
@@ -551,18 +564,19 @@ struct Simulator::Impl {
         if (obstacle) {
             // The contact planes of this step or static solve (exact quadratic energies).
             for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(plane_of_vertex.size()); ++i) {
-                const int plane = plane_of_vertex[static_cast<std::size_t>(i)];
-                if (plane < 0) continue;
-                const int vi = static_cast<int>(i);
-                const auto& [point, normal] = planes[static_cast<std::size_t>(plane)];
-                const double ei = plane_contact_energy(p.row(i).transpose(), point, normal,
-                                                       options.contact_thickness_m,
-                                                       options.contact_stiffness_n_per_m3 * area(i),
-                                                       want_g ? &g3 : nullptr, want_h ? &h3 : nullptr);
-                if (ei <= 0) continue;
-                e += ei;
-                scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
-                        want_h ? vertex_slots.data() + 9 * i : nullptr);
+                for (const int plane : plane_of_vertex[static_cast<std::size_t>(i)]) {
+                    if (plane < 0) continue;
+                    const int vi = static_cast<int>(i);
+                    const auto& [point, normal] = planes[static_cast<std::size_t>(plane)];
+                    const double ei = plane_contact_energy(p.row(i).transpose(), point, normal,
+                                                           options.contact_thickness_m,
+                                                           options.contact_stiffness_n_per_m3 * area(i),
+                                                           want_g ? &g3 : nullptr, want_h ? &h3 : nullptr);
+                    if (ei <= 0) continue;
+                    e += ei;
+                    scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
+                            want_h ? vertex_slots.data() + 9 * i : nullptr);
+                }
             }
         }
         if (friction_active())
@@ -718,7 +732,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         if (renew) {
             refresh_stiffness(p);
             planes.clear();
-            plane_of_vertex.assign(static_cast<std::size_t>(p.rows()), -1);
+            plane_of_vertex.assign(static_cast<std::size_t>(p.rows()), {-1, -1});
         }
         auto tc = Clock::now();
         update_obstacle_contacts(p);

@@ -552,3 +552,38 @@ TEST_CASE("obstacle friction ends when a vertex leaves the contact layer within 
     CHECK(d.col(0).mean() > 0.6 * 1.0 * options.time_step_s);  // kept most of its 5 mm sideways
     CHECK(d.col(0).mean() <= 1.0 * options.time_step_s + 1e-6);  // friction never pushes it
 }
+
+TEST_CASE("a patch pinched between two facing surfaces comes to rest between them", "[cloth][contact]") {
+    // Two obstacle planes 8 mm apart face each other (z = 0 facing up, z = 8 mm facing
+    // down), closer than twice the 5 mm contact layer; a patch lies in the middle, without
+    // gravity. With one contact plane per vertex and step, each step pushed the patch out of
+    // the layer of the surface that was closest at the step's start into the other's, and
+    // the next step back: a period-2 chatter of ~2 mm per step that never came to rest (the
+    // underarm of a t-shirt between arm and torso: docs/dressing.md). With a second plane
+    // for the facing surface the patch settles where the two layers balance.
+    const double gap = 0.008;
+    Eigen::MatrixX3d V(8, 3);
+    V << -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, -1, -1, gap, 1, -1, gap, 1, 1, gap, -1, 1, gap;
+    Eigen::MatrixX3i F(4, 3);
+    F << 0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6;  // lower faces +z, upper faces -z
+    SimulatorOptions options;
+    options.gravity_m_per_s2.setZero();
+    const double h = options.contact_thickness_m;
+    REQUIRE(gap < 2 * h);
+    ClothMesh m = make_square_grid(4, 0.2, Eigen::Vector3d(-0.1, -0.1, 0.45 * gap), Eigen::Vector3d::UnitX(),
+                                   Eigen::Vector3d::UnitY());
+    Simulator sim(m, drape::test::gray_interlock_material(), options);
+    sim.set_obstacle(Obstacle(V, F));
+    Eigen::MatrixX3d before = sim.positions();
+    double last_move = 0;
+    for (int k = 0; k < 60; ++k) {
+        before = sim.positions();
+        REQUIRE(sim.step().usable());
+        last_move = (sim.positions() - before).rowwise().norm().maxCoeff();
+    }
+    INFO("last step moved up to " << 1000 * last_move << " mm; z " << 1000 * sim.positions().col(2).minCoeff() << "-"
+                                  << 1000 * sim.positions().col(2).maxCoeff() << " mm");
+    CHECK(last_move < 1e-5);
+    CHECK(sim.positions().col(2).minCoeff() > 0.4 * gap);
+    CHECK(sim.positions().col(2).maxCoeff() < 0.6 * gap);
+}
