@@ -1,5 +1,6 @@
 #include <drape/vision/segmentation.hpp>
 
+#include <drape/vision/bare_arms.hpp>
 #include <drape/vision/classify_garment.hpp>
 #include <drape/vision/image_io.hpp>
 
@@ -536,6 +537,12 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
     result = Segmentation{};
     result.labels = refine(image, small_ids, cv::Mat(), joints.body_height_px(), o,
                            summary.seconds_refinement);
+
+    // Bare arms the cut gave to the upper garment (a pale or over-exposed arm beside a
+    // white top) would read as sleeves: garment pixels along an arm with the skin's
+    // chromaticity rather than the torso fabric's go back to skin (bare_arms.hpp).
+    result.labels.setTo(skin, bare_arm_pixels(image, result.labels == kUpperTmp,
+                                              result.labels == skin, joints, result.labels == hair));
 
     // Classify and write the garments' class ids.
     const double min_area = 0.002 * double(result.labels.total());

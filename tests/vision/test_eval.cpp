@@ -157,15 +157,18 @@ TEST_CASE("wrinkle density averaged over working resolutions is stable under res
     }
 }
 
-TEST_CASE("automatic garment types of a maxi skirt, a belted dress and a raised-arm t-shirt", "[vision][photos][classify]") {
+TEST_CASE("automatic garment types of a maxi skirt, a belted dress, a raised-arm t-shirt and a tank top beside a pale arm", "[vision][photos][classify]") {
     // 002149: a yellow maxi skirt reaching the feet (read as pants before the knee-width
     // cue); 001630: a white dress with a gold sash at the waist (two garments before the
     // waist band was left out of the dress test); 008124: a short-sleeved shirt, one arm
     // raised past dark hair, the other hanging beside the torso (long-sleeved while the
-    // sleeve cue counted garment touching the arm line from one side only).
+    // sleeve cue counted garment touching the arm line from one side only); 013932: a
+    // white tank top beside a pale, over-exposed bare arm that the cut gave to the top
+    // (long-sleeved before the arm's skin chromaticity sent it back to skin).
     const std::pair<const char*, GarmentType> cases[] = {{"fashionista_002149", GarmentType::skirt},
                                                          {"fashionista_001630", GarmentType::dress},
-                                                         {"fashionista_008124", GarmentType::t_shirt}};
+                                                         {"fashionista_008124", GarmentType::t_shirt},
+                                                         {"fashionista_013932", GarmentType::tank_top}};
     for (const auto& [name, expected] : cases) {
         Photo p;
         if (!load_photo(name, p)) {

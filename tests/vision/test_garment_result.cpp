@@ -1,4 +1,5 @@
 #include <drape/core/errors.hpp>
+#include <drape/vision/bare_arms.hpp>
 #include <drape/vision/garment_result.hpp>
 
 #include "synthetic_figure.hpp"
@@ -209,5 +210,39 @@ TEST_CASE("hair over the shoulders hides a sleeve but does not end it", "[vision
     CHECK(classify_upper(measure_shape_cues(bare == 51, f.joints, hiding)) != GarmentType::long_sleeve_top);
     // A hiding mask of the wrong size is rejected.
     CHECK_THROWS_AS(measure_shape_cues(top, f.joints, cv::Mat(10, 10, CV_8UC1, cv::Scalar(0))),
+                    InvalidInput);
+}
+
+TEST_CASE("bare arms with the skin's colour are no sleeves, sleeves of the top's fabric are", "[vision][garments][classify]") {
+    // The drawn figure's blue t-shirt with short sleeves; its skin-coloured arms labelled
+    // as the top (the automatic cut's mistake on a pale arm beside a white top).
+    const test::SyntheticFigure f = test::make_figure();
+    using J = Joint;
+    const auto p = [&](J j) { return cv::Point(int(f.joints[j].x()), int(f.joints[j].y())); };
+    cv::Mat arms = cv::Mat::zeros(f.labels.size(), CV_8UC1);
+    for (const auto& [s, e, h] : {std::tuple{J::right_shoulder, J::right_elbow, J::right_hand},
+                                  std::tuple{J::left_shoulder, J::left_elbow, J::left_hand}}) {
+        cv::line(arms, p(s), p(e), cv::Scalar(255), 26);
+        cv::line(arms, p(e), p(h), cv::Scalar(255), 26);
+    }
+    arms &= f.labels == 41;
+    const cv::Mat fabric = f.labels == 51;
+    const cv::Mat top = fabric | arms, skin = (f.labels == 41) & ~arms;
+    REQUIRE(classify_upper(measure_shape_cues(top, f.joints)) == GarmentType::long_sleeve_top);
+    const cv::Mat bare = bare_arm_pixels(f.photo, top, skin, f.joints);
+    CHECK(cv::countNonZero(bare & fabric) == 0);
+    CHECK(cv::countNonZero(bare & arms) > 0.8 * cv::countNonZero(arms));
+    CHECK(classify_upper(measure_shape_cues(top & ~bare, f.joints)) == GarmentType::t_shirt);
+    // Long sleeves of the top's fabric stay sleeves.
+    cv::Mat sleeved = f.photo.clone();
+    sleeved.setTo(cv::Scalar(190, 120, 60), arms);
+    CHECK(cv::countNonZero(bare_arm_pixels(sleeved, top, skin, f.joints)) == 0);
+    // A skin-coloured (nude) top: its sleeves are not told from arms by colour, and kept.
+    cv::Mat nude = f.photo.clone();
+    nude.setTo(cv::Scalar(140, 170, 225), fabric);
+    CHECK(cv::countNonZero(bare_arm_pixels(nude, top, skin, f.joints)) == 0);
+    // No skin to compare with: nothing changes.
+    CHECK(cv::countNonZero(bare_arm_pixels(f.photo, top, cv::Mat::zeros(top.size(), CV_8UC1), f.joints)) == 0);
+    CHECK_THROWS_AS(bare_arm_pixels(f.photo, top, cv::Mat(10, 10, CV_8UC1, cv::Scalar(0)), f.joints),
                     InvalidInput);
 }

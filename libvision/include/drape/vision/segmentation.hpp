@@ -107,8 +107,10 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image_bgr, const cv::Mat
 
 /// Automatic parsing seeded from the joints: body-part regions give the initial colour
 /// models of upper garment, lower garment, skin, hair and background; rounds of graph
-/// cuts refine them; each garment is then classified from its mask geometry relative to
-/// the joints (classify_garment.hpp) and written with label_id_of(type). A photo where the
+/// cuts refine them; upper-garment pixels along an arm that have the skin's chromaticity
+/// rather than the garment's go back to skin (bare_arms.hpp); each garment is then
+/// classified from its mask geometry relative to the joints (classify_garment.hpp) and
+/// written with label_id_of(type). A photo where the
 /// upper and lower regions share one colour model and meet at the waist is a dress.
 /// \throw drape::InvalidInput for a non-BGR image, joints off the image, invalid options.
 SegmentationSummary segment_automatic(const cv::Mat& image_bgr, const Joints& joints,
