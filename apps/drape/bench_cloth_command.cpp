@@ -35,6 +35,7 @@ struct BenchClothArgs {
     int max_newton = 0;    // 0: the scene's default
     int max_nonconvex = -1;  // -1: the scene's default
     double tolerance = 0;  // 0: the scene's default
+    double move_tolerance = -1;  // < 0: the scene's default
     std::string out;
     bool json = false;
     bool quiet = false;
@@ -59,7 +60,10 @@ void run_bench_cloth(const BenchClothArgs& args) {
             args.max_nonconvex, " must be in [0, 1000]");
     require(std::isfinite(args.tolerance) && args.tolerance >= 0, "drape bench-cloth: --step-tolerance ",
             args.tolerance, " must be > 0");
+    require(args.move_tolerance < 0 || (std::isfinite(args.move_tolerance) && args.move_tolerance <= 0.01),
+            "drape bench-cloth: --step-move-tolerance ", args.move_tolerance, " must be in [0, 0.01] m");
     cloth::AnchorScene scene = cloth::make_anchor_scene(args.grid);
+    if (args.move_tolerance >= 0) scene.options.step_displacement_tolerance_m = args.move_tolerance;
     if (args.max_newton > 0) scene.options.max_newton_iterations = args.max_newton;
     if (args.tolerance > 0) scene.options.step_relative_tolerance = args.tolerance;
     if (args.max_nonconvex >= 0) scene.options.max_nonconvex_step_iterations = args.max_nonconvex;
@@ -115,6 +119,7 @@ void run_bench_cloth(const BenchClothArgs& args) {
     j["factorisations_per_step"] = static_cast<double>(factorisations) / steps;
     j["failed_steps"] = failed;
     j["max_nonconvex_step_iterations"] = scene.options.max_nonconvex_step_iterations;
+    j["step_displacement_tolerance_m"] = scene.options.step_displacement_tolerance_m;
     j["centre_z_m"] = sim.positions()(scene.centre_vertex, 2);
     j["min_z_m"] = sim.positions().col(2).minCoeff();
     j["max_penetration_m"] = report.max_penetration_m;
@@ -168,6 +173,8 @@ void add_bench_cloth_command(CLI::App& app) {
     cmd->add_option("--max-nonconvex", args->max_nonconvex,
                     "end a step after this many regularised (not convex) Newton iterations, 0 = never "
                     "(default 4)");
+    cmd->add_option("--step-move-tolerance", args->move_tolerance,
+                    "a step ends on a full Newton step moving no vertex farther than this (m; 0 = off)");
     cmd->add_option("--step-tolerance", args->tolerance,
                     "Newton tolerance of a step relative to the largest vertex weight (default 0.01)");
     cmd->add_option("--out", args->out, "also write the figures to this JSON file");

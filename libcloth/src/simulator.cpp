@@ -683,6 +683,9 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
     const bool use_self = options.self_contact;
     std::vector<internal::PairHessian> pair_hessians;
     double last_move = 0;
+    // The last iteration was a full, unregularised Newton step that moved no vertex farther
+    // than step_displacement_tolerance_m: the step may end here (confirmed below).
+    bool small_full_step = false;
     bool renew_next = false;
     // How far the cloth moves relative to itself (up to a common translation, which brings
     // no two of its points closer): what the self-contact candidates must cover.
@@ -705,6 +708,18 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                     g->segment<3>(3 * i) += inertia_weight * mass(i) * d.row(i).transpose();
         }
         return e;
+    };
+    // Largest per-vertex move the inertia term alone would answer the gradient with.
+    auto inertia_scaled_residual = [&](const Eigen::VectorXd& g, double w) {
+        double r = 0;
+        for (Eigen::Index i = 0; i < mass.size(); ++i) {
+            if (!(mass(i) > 0)) continue;
+            double n2 = 0;
+            for (int c = 0; c < 3; ++c)
+                if (dof(static_cast<int>(i), c) >= 0) n2 += g(3 * i + c) * g(3 * i + c);
+            r = std::max(r, std::sqrt(n2) / (w * mass(i)));
+        }
+        return r;
     };
     auto free_inf_norm = [&](const Eigen::VectorXd& g) {
         double n = 0;
@@ -764,6 +779,28 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         if (it == 0) lag_pair_friction(p);
         const double contact_seconds = seconds_since(tc);
         s.seconds_contact += contact_seconds;
+        if (small_full_step) {
+            // Confirm before assembling and factoring again: the correction Newton would still
+            // make is about |g_i| / (m_i / dt²) per vertex, a bound where the step's matrix is
+            // the inertia plus a positive semi-definite part. Where Newton is in its quadratic
+            // regime this is far below the step just taken; where the energy is much stiffer
+            // than the step's model (smoothed friction sticking at the step's start) it is
+            // not, and Newton goes on.
+            const auto t_check = Clock::now();
+            Eigen::VectorXd g_now;
+            const double e_now = total(p, &g_now, nullptr, nullptr);
+            const bool done = std::isfinite(e_now) && g_now.allFinite() &&
+                              inertia_scaled_residual(g_now, inertia_weight) <= options.step_displacement_tolerance_m;
+            s.seconds_assembly += seconds_since(t_check);
+            if (done) {
+                s.energy_j = e_now;
+                s.gradient_inf_norm_n = free_inf_norm(g_now);
+                s.newton_iterations = it;
+                s.termination = StepTermination::converged;
+                break;
+            }
+            small_full_step = false;
+        }
         hessian_mode = inertia_weight > 0 ? options.step_hessian : options.static_hessian;
         std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.0);
         pair_hessians.clear();
@@ -941,11 +978,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             s.message = "no energy decrease along the Newton direction";
             break;
         }
-        if (inertia_weight > 0 && full_step && last_move <= options.step_displacement_tolerance_m) {
-            s.newton_iterations = it + 1;
-            s.termination = StepTermination::converged;
-            break;
-        }
+        small_full_step = inertia_weight > 0 && full_step && last_move <= options.step_displacement_tolerance_m;
         // Where the step's incremental potential is not convex (buckling), the projected
         // Newton matrix converges only linearly and can crawl along the unstable mode for
         // the whole iteration budget; the step ends instead and the next step goes on from
