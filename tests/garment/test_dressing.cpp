@@ -477,6 +477,35 @@ TEST_CASE("drape: the 5th-percentile man's t-shirt in A-pose sews its sleeve cap
     CHECK(c.max_seam_gap_m < 0.001);
 }
 
+TEST_CASE("dressing: placement passes are validated; a clean skirt keeps the single pass",
+          "[garment][dressing]") {
+    DressingOptions d;
+    std::string why;
+    for (int bad : {-1, 9}) {
+        d.placement_passes = bad;
+        CHECK_FALSE(d.is_valid(&why));
+        CHECK(why.find("placement_passes") != std::string::npos);
+    }
+    d.placement_passes = 4;
+    CHECK(d.is_valid(&why));
+    // Automatic: a skirt (no sleeves) whose one-pass placement leaves no crossing is dressed
+    // exactly as with one pass, not with four.
+    const MeanBody b(body::Gender::female, body::NamedPose::a_pose);
+    const Pattern pattern = make_circle_skirt(propose_skirt_sizing(b.m));
+    const GarmentMesh mesh = mesh_at_4cm(pattern);
+    Eigen::MatrixX3d automatic, one, four;
+    const DressingSummary sa = dress_garment(pattern, mesh, b.model, b.shaped, b.pose, DressingOptions{}, automatic);
+    REQUIRE(sa.self_intersections == 0);
+    DressingOptions o1, o4;
+    o1.placement_passes = 1;
+    o4.placement_passes = 4;
+    dress_garment(pattern, mesh, b.model, b.shaped, b.pose, o1, one);
+    dress_garment(pattern, mesh, b.model, b.shaped, b.pose, o4, four);
+    CHECK((automatic - one).cwiseAbs().maxCoeff() == 0.0);
+    INFO("four passes move the dressed skirt by up to " << (four - one).rowwise().norm().maxCoeff() << " m");
+    CHECK(four.allFinite());
+}
+
 TEST_CASE("untangle: options are validated and a clean state is left alone", "[garment][dressing]") {
     UntangleOptions o;
     std::string why;

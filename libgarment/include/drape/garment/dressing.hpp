@@ -26,6 +26,11 @@ struct DressingOptions {
     /// Last step: crossings left by wrapping and push-out are separated (untangle_garment).
     bool untangle = true;
     UntangleOptions untangle_options;
+    /// Guarded passes of the radial placement, [0, 8]. 0 = automatic: 4 for a garment with
+    /// sleeves (the two sides of an armhole start on one line); 1 otherwise, and 4 as well
+    /// when one pass leaves crossings (the state with fewer is kept). dress_and_drape_outfit
+    /// also re-dresses the garments without sleeves with 4 when the layered outfit crosses.
+    int placement_passes = 0;
     bool is_valid(std::string* why = nullptr) const;
 };
 
