@@ -1,6 +1,6 @@
 // drape dress --garment skirt|pants|tshirt|dress --sizing G.json|auto --material NAME|PATH
 //             [--materials DIR] [--body P.json] [--pose NAME|POSE.json] [--edge CM]
-//             [--no-render] [--save-dressed] --out DIR
+//             [--no-render] [--save-dressed] [--keep-arms] --out DIR
 // drape eval-dress [--garments LIST] [--poses LIST] [--bodies LIST] [--edge CM] [--material NAME|PATH]
 //             [--materials DIR] --out DIR   (the templates x bodies x poses table)
 #include "body_json.hpp"
@@ -16,6 +16,7 @@
 #include <drape/cloth/material.hpp>
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/eval_bodies.hpp>
 #include <drape/garment/dressing.hpp>
@@ -59,6 +60,7 @@ struct DressArgs {
     double edge_cm = 1.5;
     bool no_render = false;
     bool save_dressed = false;
+    bool keep_arms = false;
     double motion_s = garment::DrapeOptions{}.body_motion_s;
 };
 
@@ -210,7 +212,7 @@ void run_dress(const DressArgs& args) {
     // Every input is read and checked before the slow work.
     const GarmentType type = garment_type_from_name(args.garment);
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
-    const body::Pose pose = resolve_pose(args.pose);
+    const body::Pose requested_pose = resolve_pose(args.pose);
     std::string material_source;
     const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
     const body::SemanticRequest request =
@@ -223,6 +225,10 @@ void run_dress(const DressArgs& args) {
     const body::ShapeSummary shape =
         body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
+    garment::ArmClearanceSummary arms;
+    const body::Pose pose = args.keep_arms ? requested_pose
+                                           : garment::clear_arms_from_trunk(model, shaped, requested_pose, {}, &arms);
+    if (arms.crossings_before > 0) std::cerr << "drape dress: " << arms.brief_report() << "\n";
     const body::PosedBody posed = body::pose_body(model, shaped, pose);
     const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, model, shaped, shape.measured) : given;
     const garment::Pattern pattern = make_pattern(sizing);
@@ -262,6 +268,7 @@ void run_dress(const DressArgs& args) {
     if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, {&mesh}, {X});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json report = drape_report(args, material_source, draped);
+    report["arms_raised_deg"] = {{"right", arms.right_degrees}, {"left", arms.left_degrees}};
     report["garment"] = garment_type_name(type);
     report["sizing"] = to_json(sizing);
     report["faces"] = meshed.faces;
@@ -292,7 +299,7 @@ void run_dress_outfit(const DressArgs& args) {
             "--garment '", args.garment, "': an outfit is a top and a bottom (tshirt+pants or tshirt+skirt)");
     if (is_top(types[0])) std::swap(types[0], types[1]);  // inner (bottom) first
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
-    const body::Pose pose = resolve_pose(args.pose);
+    const body::Pose requested_pose = resolve_pose(args.pose);
     std::string material_source;
     const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
     const body::SemanticRequest request =
@@ -312,6 +319,10 @@ void run_dress_outfit(const DressArgs& args) {
     body::ShapedBody shaped;
     const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
+    garment::ArmClearanceSummary arms;
+    const body::Pose pose = args.keep_arms ? requested_pose
+                                           : garment::clear_arms_from_trunk(model, shaped, requested_pose, {}, &arms);
+    if (arms.crossings_before > 0) std::cerr << "drape dress: " << arms.brief_report() << "\n";
     std::vector<GarmentSizing> sizings;
     std::vector<garment::Pattern> patterns;
     for (GarmentType t : types) {
@@ -362,6 +373,7 @@ void run_dress_outfit(const DressArgs& args) {
     if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh_ptrs, X);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json report = drape_report(args, material_source, draped);
+    report["arms_raised_deg"] = {{"right", arms.right_degrees}, {"left", arms.left_degrees}};
     report["garment"] = args.garment;
     report["garments"] = garments;
     report["seconds"] = seconds;
@@ -384,6 +396,22 @@ struct EvalDressArgs {
 
 using garment::EvalBody;
 using garment::kEvalBodies;
+
+// The evaluation poses on one body, each arm raised just clear of the trunk
+// (garment::clear_arms_from_trunk: skinning lets a thick arm held down pass into the torso,
+// where no garment vertex can be outside both); printed per pose.
+std::vector<body::Pose> arms_cleared(const body::BodyModel& model, const body::ShapedBody& shaped,
+                                     const std::vector<body::Pose>& poses, const std::vector<std::string>& names,
+                                     const std::string& body_name) {
+    std::vector<body::Pose> out;
+    for (size_t k = 0; k < poses.size(); ++k) {
+        garment::ArmClearanceSummary c;
+        out.push_back(garment::clear_arms_from_trunk(model, shaped, poses[k], garment::ArmClearanceOptions{}, &c));
+        if (c.crossings_before > 0)
+            std::cout << "drape eval-dress: " << body_name << " / " << names[k] << ": " << c.brief_report() << std::endl;
+    }
+    return out;
+}
 
 void run_eval_dress(const EvalDressArgs& args) {
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
@@ -418,6 +446,7 @@ void run_eval_dress(const EvalDressArgs& args) {
         body::ShapedBody shaped;
         const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
         if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping " + std::string(eb.name) + " failed: " + shape.brief_report());
+        const std::vector<body::Pose> body_poses = arms_cleared(model, shaped, poses, args.poses, eb.name);
         for (size_t t = 0; t < types.size(); ++t) {
             const GarmentSizing sizing = proposed_sizing(types[t], model, shaped, shape.measured);
             const garment::Pattern pattern = make_pattern(sizing);
@@ -429,10 +458,10 @@ void run_eval_dress(const EvalDressArgs& args) {
             for (size_t k = 0; k < poses.size(); ++k) {
                 Eigen::MatrixX3d X;
                 garment::DressingSummary dressed;
-                const garment::DrapeSummary d = garment::dress_and_drape(pattern, mesh, model, shaped, poses[k], material,
+                const garment::DrapeSummary d = garment::dress_and_drape(pattern, mesh, model, shaped, body_poses[k], material,
                                                                          garment::DressingOptions{}, garment::DrapeOptions{},
                                                                          X, &dressed);
-                const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, poses[k]).vertices;
+                const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, body_poses[k]).vertices;
                 // Independent of the simulator's own report: the checks of the dressed state.
                 const garment::GarmentStateCheck c = garment::check_garment_state(mesh, X, body_V, model.faces);
                 const bool ok = d.usable() && c.max_penetration_m <= 1e-3 && c.self_intersections == 0 &&
@@ -481,6 +510,7 @@ void run_eval_dress(const EvalDressArgs& args) {
         body::ShapedBody shaped;
         const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
         if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping failed: " + shape.brief_report());
+        const std::vector<body::Pose> body_poses = arms_cleared(model, shaped, poses, args.poses, eb.name);
         const std::vector<garment::Pattern> patterns = {make_pattern(proposed_sizing(GarmentType::pants, model, shaped, shape.measured)),
                                                         make_pattern(proposed_sizing(GarmentType::tshirt, model, shaped, shape.measured))};
         std::vector<garment::GarmentMesh> meshes(2);
@@ -492,7 +522,7 @@ void run_eval_dress(const EvalDressArgs& args) {
         for (size_t k = 0; k < poses.size(); ++k) {
             std::vector<Eigen::MatrixX3d> X;
             const garment::DrapeSummary d = garment::dress_and_drape_outfit(
-                patterns, meshes, model, shaped, poses[k], material, garment::DressingOptions{}, garment::DrapeOptions{}, X);
+                patterns, meshes, model, shaped, body_poses[k], material, garment::DressingOptions{}, garment::DrapeOptions{}, X);
             std::cout << "drape eval-dress: tshirt+pants / " << eb.name << " / " << args.poses[k] << ": "
                       << d.brief_report() << std::endl;
             table << "| tshirt+pants | " << eb.name << " | " << args.poses[k] << " | " << d.vertices << " | " << std::fixed
@@ -505,7 +535,7 @@ void run_eval_dress(const EvalDressArgs& args) {
                              {"vertices", d.vertices}, {"mean_drop_m", d.mean_drop_m}, {"usable", d.usable()},
                              {"drape", d.brief_report()},
                              {"seconds", d.seconds}});
-            const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, poses[k]).vertices;
+            const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, body_poses[k]).vertices;
             sheet_cells.push_back({"tshirt+pants, " + args.poses[k],
                                    write_render(dir / ("tshirt+pants_" + args.poses[k] + ".png"), body_V, model.faces,
                                                 {&meshes[0], &meshes[1]}, X, 300, 450)});
@@ -579,6 +609,8 @@ void add_dress_command(CLI::App& app) {
     cmd->add_option("--pose", args->pose, "a_pose (default), arms_down, walking, t_pose, or a POSE.json");
     cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 1.5)");
     cmd->add_flag("--no-render", args->no_render, "skip render.png");
+    cmd->add_flag("--keep-arms", args->keep_arms,
+                  "keep the pose's arms as given (default: each arm is raised just clear of the trunk where it passes into it)");
     cmd->add_option("--motion-seconds", args->motion_s,
                     "time over which the body moves from the A-pose to --pose after sewing (default 0.6; longer "
                     "if a body vertex would move more than half the contact thickness per step)");

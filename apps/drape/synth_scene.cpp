@@ -10,6 +10,7 @@
 #include <drape/cloth/local_curvature.hpp>
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/garment_mesh.hpp>
@@ -331,6 +332,9 @@ SynthScene sample_synth_scene(const SynthOptions& options) {
     const body::ShapeSummary shaping = body::shape_body(model, s.shape, body::ShapeOptions{}, s.shaped);
     if (!shaping.usable()) throw std::runtime_error("drape synth: body shaping failed: " + shaping.brief_report());
     s.shaping_report = shaping.brief_report();
+    // Arms held down pass into a thick torso under skinning: raised just clear of it
+    // (garment::clear_arms_from_trunk), as in drape eval-dress.
+    s.pose = garment::clear_arms_from_trunk(model, s.shaped, s.pose);
     Rng sizing_rng(options.seed, sizing_stream), material_rng(options.seed, material_stream),
         look_rng(options.seed, look_stream);
     // Only a skirt's sizing needs it (the dress's skirt is sized from its bodice).

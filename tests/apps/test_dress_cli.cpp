@@ -32,6 +32,9 @@ TEST_CASE("drape dress drapes a skirt and writes the summary", "[apps][dress]") 
     CHECK(s["vertices"].get<int>() > 50);
     CHECK(s["seconds"].get<double>() > 0);
     for (const char* key : {"l1", "r1", "r2", "alpha"}) CHECK(s["sizing"][key].is_number());
+    // A-pose: the arms are clear of the trunk already, nothing raised.
+    CHECK(s["arms_raised_deg"]["right"].get<double>() == 0.0);
+    CHECK(s["arms_raised_deg"]["left"].get<double>() == 0.0);
     for (const char* file : {"garment.obj", "garment.glb", "pattern.svg", "pattern.dxf", "pattern.json"})
         CHECK(std::filesystem::file_size(dir / file) > 100);
     std::ifstream glb(dir / "garment.glb", std::ios::binary);

@@ -4,6 +4,7 @@
 #include <drape/body/shape_body.hpp>
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
+#include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/circle_skirt.hpp>
 #include <drape/garment/dress.hpp>
 #include <drape/cloth/material.hpp>
@@ -588,4 +589,108 @@ TEST_CASE("drape: the 95th-percentile man's skirt, sized where its waistband sit
     const GarmentStateCheck c = check_garment_state(mesh, X, b.posed.vertices, b.model.faces);
     CHECK(c.self_intersections == 0);
     CHECK(c.max_penetration_m <= 0.001);
+}
+
+namespace {
+
+// An eval body shaped by the prior from its gender, stature and mass (as drape eval-dress).
+body::ShapedBody shaped_eval_body(const body::BodyModel& model, const EvalBody& eb) {
+    body::SemanticRequest request;
+    request.gender = eb.gender;
+    request[body::Semantic::height_m] = eb.height_m;
+    request[body::Semantic::weight_kg] = eb.weight_kg;
+    body::ShapedBody shaped;
+    REQUIRE(body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped).usable());
+    return shaped;
+}
+
+}  // namespace
+
+TEST_CASE("dressing eval: the posed eval bodies' own surface overlaps (armpits, thighs)",
+          "[garment][dressing][.eval]") {
+    // Linear blend skinning lets touching body parts pass into each other (the arm into
+    // the torso at the armpit with the arms down, the thighs of heavy bodies): a garment
+    // vertex caught there cannot be outside both. Prints, per eval body and pose, the
+    // crossing triangle pairs of the body mesh by region (arms, legs, trunk).
+    const body::BodyModel& model = body::BodyModel::default_model();
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    for (const EvalBody& eb : kEvalBodies) {
+        const body::ShapedBody shaped = shaped_eval_body(model, eb);
+        for (const auto pose : {body::NamedPose::a_pose, body::NamedPose::arms_down, body::NamedPose::walking}) {
+            const Eigen::MatrixXd V = body::pose_body(model, shaped, body::named_pose(pose)).vertices;
+            const Eigen::MatrixX3d P = V;
+            std::vector<std::pair<int, int>> pairs;
+            const int crossings = drape::cloth::count_self_intersections(P, model.faces, &pairs);
+            // Where: each face's region by the dominant joint of its first vertex.
+            auto region = [&](int f) {
+                const int v = model.faces(f, 0);
+                double best = 0;
+                int joint = 0;
+                for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, v); it; ++it)
+                    if (it.value() > best) best = it.value(), joint = int(it.col());
+                if (joint >= 6 && joint <= 9) return std::string("right arm");
+                if (joint >= 10 && joint <= 13) return std::string("left arm");
+                if (joint >= 14 && joint <= 17) return std::string("right leg");
+                if (joint >= 18) return std::string("left leg");
+                return std::string("trunk");
+            };
+            std::map<std::string, int> where;
+            for (const auto& [a, b] : pairs) {
+                std::string ra = region(a), rb = region(b);
+                if (rb < ra) std::swap(ra, rb);
+                ++where[ra + " / " + rb];
+            }
+            std::string list;
+            for (const auto& [k, n] : where) list += " " + k + ": " + std::to_string(n) + ";";
+            std::printf("%s pose %d: %d crossing triangle pairs of the body surface:%s\n", eb.name,
+                        static_cast<int>(pose), crossings, list.c_str());
+        }
+    }
+}
+
+TEST_CASE("arms are raised just clear of the trunk, and only where they cross it", "[garment][dressing][pose]") {
+    const body::BodyModel& model = body::BodyModel::default_model();
+    // The median woman's arms held down pass into her torso (119 crossing triangle pairs):
+    // a few degrees clear them, and one step less does not.
+    const body::ShapedBody median = shaped_eval_body(model, kEvalBodies[1]);
+    const body::Pose down = body::named_pose(body::NamedPose::arms_down);
+    ArmClearanceSummary s;
+    const body::Pose cleared = clear_arms_from_trunk(model, median, down, {}, &s);
+    INFO(s.brief_report());
+    CHECK(s.crossings_before > 50);
+    CHECK(s.clear());
+    CHECK(s.right_degrees > 0);
+    CHECK(s.left_degrees > 0);
+    CHECK(s.right_degrees <= 10);
+    CHECK(s.left_degrees <= 10);
+    const Eigen::MatrixX3d X = body::pose_body(model, median, cleared).vertices;
+    CHECK(drape::cloth::count_self_intersections(X, model.faces) == 0);
+    // Only the shoulders turned, both outward (the hands farther from the body's axis).
+    for (int j = 0; j < body::kJointCount; ++j)
+        if (j != body::index(body::Joint::right_shoulder) && j != body::index(body::Joint::left_shoulder))
+            CHECK(cleared.rotations.row(j) == down.rotations.row(j));
+    const Eigen::MatrixX3d J0 = body::pose_body(model, median, down).joints, J1 = body::pose_body(model, median, cleared).joints;
+    for (body::Joint w : {body::Joint::right_wrist, body::Joint::left_wrist}) {
+        const int j = body::index(w), pelvis = body::index(body::Joint::pelvis);
+        CHECK(std::abs(J1(j, 0) - J1(pelvis, 0)) > std::abs(J0(j, 0) - J0(pelvis, 0)));
+    }
+    // A step less leaves crossings (the smallest multiple of the step is taken).
+    ArmClearanceOptions capped;
+    capped.max_degrees = std::max(s.right_degrees, s.left_degrees) - 1;
+    ArmClearanceSummary c;
+    clear_arms_from_trunk(model, median, down, capped, &c);
+    CHECK_FALSE(c.clear());
+    // The 5th-percentile woman's arms do not touch her torso: the pose is returned as is.
+    const body::ShapedBody slim = shaped_eval_body(model, kEvalBodies[0]);
+    ArmClearanceSummary t;
+    const body::Pose same = clear_arms_from_trunk(model, slim, down, {}, &t);
+    CHECK(t.crossings_before == 0);
+    CHECK(same.rotations == down.rotations);
+    // Bad options.
+    ArmClearanceOptions bad;
+    bad.step_degrees = 0;
+    CHECK_THROWS_AS(clear_arms_from_trunk(model, slim, down, bad), drape::InvalidInput);
+    bad = ArmClearanceOptions{};
+    bad.max_degrees = 90;
+    CHECK_THROWS_AS(clear_arms_from_trunk(model, slim, down, bad), drape::InvalidInput);
 }

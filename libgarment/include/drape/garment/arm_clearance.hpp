@@ -1,0 +1,41 @@
+// Arms clear of the trunk: a pose whose arms do not pass into the torso, for draping.
+#pragma once
+
+#include <drape/body/body_model.hpp>
+#include <drape/body/pose.hpp>
+#include <drape/body/shape_body.hpp>
+
+#include <string>
+
+namespace drape::garment {
+
+struct ArmClearanceOptions {
+    double step_degrees = 1.0;  ///< abduction added per trial, (0, 10]
+    double max_degrees = 20.0;  ///< at most this much per arm, [0, 60]
+    bool is_valid(std::string* why = nullptr) const;
+};
+
+struct ArmClearanceSummary {
+    int crossings_before = 0;     ///< crossing triangle pairs arm / trunk of the given pose
+    int crossings_after = 0;      ///< the same in the returned pose (0 unless max_degrees ran out)
+    double right_degrees = 0;     ///< abduction added to the right shoulder
+    double left_degrees = 0;      ///< abduction added to the left shoulder
+    int trials = 0;               ///< posed bodies checked
+    bool clear() const { return crossings_after == 0; }
+    std::string brief_report() const;
+};
+
+/// Linear blend skinning lets a thick arm held close to the body pass into the torso at the
+/// armpit (arms down or swinging, on most bodies but the slimmest): a garment vertex caught
+/// between the two surfaces there cannot be outside both. This returns `pose` with each
+/// arm raised sideways (about the shoulder's parent-frame z, the body's front axis) by the
+/// smallest multiple of step_degrees after which no triangle of that arm (faces skinned
+/// mainly to the shoulder, elbow or wrist) crosses a triangle of the trunk (pelvis, spine,
+/// chest), at most max_degrees. Arms that are clear are not changed; the pose is otherwise
+/// unchanged. \throw drape::InvalidInput on invalid options, pose or a body that does not
+/// fit the model.
+body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::ShapedBody& shaped,
+                                 const body::Pose& pose, const ArmClearanceOptions& options = {},
+                                 ArmClearanceSummary* summary = nullptr);
+
+}  // namespace drape::garment

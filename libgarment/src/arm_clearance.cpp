@@ -1,0 +1,125 @@
+#include <drape/garment/arm_clearance.hpp>
+
+#include <drape/cloth/intersections.hpp>
+#include <drape/core/errors.hpp>
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace drape::garment {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+enum Region { kOther = 0, kTrunk = 1, kRightArm = 2, kLeftArm = 3 };
+
+Region region_of_joint(int j) {
+    using body::Joint;
+    using body::index;
+    if (j == index(Joint::pelvis) || j == index(Joint::spine) || j == index(Joint::chest)) return kTrunk;
+    if (j == index(Joint::right_shoulder) || j == index(Joint::right_elbow) || j == index(Joint::right_wrist))
+        return kRightArm;
+    if (j == index(Joint::left_shoulder) || j == index(Joint::left_elbow) || j == index(Joint::left_wrist))
+        return kLeftArm;
+    return kOther;
+}
+
+}  // namespace
+
+bool ArmClearanceOptions::is_valid(std::string* why) const {
+    auto fail = [&](const std::string& t) {
+        if (why) *why = t;
+        return false;
+    };
+    if (!(step_degrees > 0 && step_degrees <= 10))
+        return fail("ArmClearanceOptions::step_degrees = " + std::to_string(step_degrees) + " must be in (0, 10]");
+    if (!(max_degrees >= 0 && max_degrees <= 60))
+        return fail("ArmClearanceOptions::max_degrees = " + std::to_string(max_degrees) + " must be in [0, 60]");
+    return true;
+}
+
+std::string ArmClearanceSummary::brief_report() const {
+    std::ostringstream os;
+    os << (clear() ? "arms clear of the trunk" : "arms still cross the trunk") << ": " << crossings_before
+       << " -> " << crossings_after << " crossing arm/trunk triangle pairs, right arm raised " << right_degrees
+       << " deg, left " << left_degrees << " deg, " << trials << " trials";
+    return os.str();
+}
+
+body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::ShapedBody& shaped,
+                                 const body::Pose& pose, const ArmClearanceOptions& options,
+                                 ArmClearanceSummary* summary) {
+    std::string why;
+    require(options.is_valid(&why), "clear_arms_from_trunk: ", why);
+    require(pose.is_valid(&why), "clear_arms_from_trunk: pose: ", why);
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
+            "clear_arms_from_trunk: the shaped body has ", shaped.vertices.rows(), " vertices, the model ",
+            model.vertex_count());
+    // Region of each face: that of its vertices' dominant joints when all three agree.
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    std::vector<int> vertex_region(size_t(model.vertex_count()), kOther);
+    for (Eigen::Index v = 0; v < W.rows(); ++v) {
+        double best = 0;
+        int joint = -1;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, v); it; ++it)
+            if (it.value() > best) best = it.value(), joint = int(it.col());
+        if (joint >= 0) vertex_region[size_t(v)] = region_of_joint(joint);
+    }
+    std::vector<int> face_region(size_t(model.faces.rows()), kOther);
+    for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
+        const int r = vertex_region[size_t(model.faces(f, 0))];
+        if (r == vertex_region[size_t(model.faces(f, 1))] && r == vertex_region[size_t(model.faces(f, 2))])
+            face_region[size_t(f)] = r;
+    }
+    // Crossings of each arm with the trunk in a pose.
+    ArmClearanceSummary s;
+    auto crossings = [&](const body::Pose& p) {
+        ++s.trials;
+        const Eigen::MatrixX3d X = body::pose_body(model, shaped, p).vertices;
+        std::vector<std::pair<int, int>> pairs;
+        cloth::count_self_intersections(X, model.faces, &pairs);
+        std::array<int, 2> n{0, 0};  // right, left
+        for (const auto& [a, b] : pairs) {
+            const int ra = face_region[size_t(a)], rb = face_region[size_t(b)];
+            for (int arm = 0; arm < 2; ++arm) {
+                const int r = arm == 0 ? kRightArm : kLeftArm;
+                if ((ra == r && rb == kTrunk) || (rb == r && ra == kTrunk)) ++n[size_t(arm)];
+            }
+        }
+        return n;
+    };
+    // Raising: rotations about +Z lower the right arm and raise the left one (named_pose).
+    auto raised = [&](double right_deg, double left_deg) {
+        body::Pose p = pose;
+        const std::array<std::pair<body::Joint, double>, 2> turns = {
+            std::make_pair(body::Joint::right_shoulder, -right_deg), std::make_pair(body::Joint::left_shoulder, left_deg)};
+        for (const auto& [joint, deg] : turns) {
+            const int j = body::index(joint);
+            const Eigen::Vector3d a = p.rotations.row(j).transpose();
+            const Eigen::AngleAxisd old(a.norm(), a.norm() > 0 ? Eigen::Vector3d(a.normalized()) : Eigen::Vector3d::UnitX());
+            const Eigen::AngleAxisd turned(Eigen::AngleAxisd(deg * kPi / 180, Eigen::Vector3d::UnitZ()) * old);
+            p.rotations.row(j) = (turned.angle() * turned.axis()).transpose();
+        }
+        return p;
+    };
+    std::array<int, 2> n = crossings(pose);
+    s.crossings_before = n[0] + n[1];
+    double right = 0, left = 0;
+    while ((n[0] > 0 && right + options.step_degrees <= options.max_degrees + 1e-9) ||
+           (n[1] > 0 && left + options.step_degrees <= options.max_degrees + 1e-9)) {
+        if (n[0] > 0 && right + options.step_degrees <= options.max_degrees + 1e-9) right += options.step_degrees;
+        if (n[1] > 0 && left + options.step_degrees <= options.max_degrees + 1e-9) left += options.step_degrees;
+        n = crossings(raised(right, left));
+    }
+    s.crossings_after = n[0] + n[1];
+    s.right_degrees = right;
+    s.left_degrees = left;
+    if (summary) *summary = s;
+    return raised(right, left);
+}
+
+}  // namespace drape::garment
