@@ -617,15 +617,18 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
         }
 }
 
-std::vector<double> SelfContact::vertex_offsets(const Eigen::MatrixX3d& q) const {
-    // Any one translation T may be taken out (|Δa − T| + |Δb − T| bounds how much closer a
-    // and b came): T = 0 suits cloth resting on a body, T = the mean a falling sheet.
-    const Eigen::MatrixX3d moved = q - reference_;
-    const Eigen::RowVector3d mean = moved.colwise().mean();
-    const Eigen::VectorXd still = moved.rowwise().norm();
-    const Eigen::VectorXd relative = (moved.rowwise() - mean).rowwise().norm();
+std::vector<double> translation_reduced_lengths(const Eigen::MatrixX3d& d) {
+    // T = 0 suits cloth resting on a body, T = the mean a falling sheet.
+    if (d.rows() == 0) return {};
+    const Eigen::RowVector3d mean = d.colwise().mean();
+    const Eigen::VectorXd still = d.rowwise().norm();
+    const Eigen::VectorXd relative = (d.rowwise() - mean).rowwise().norm();
     const Eigen::VectorXd& best = relative.maxCoeff() < still.maxCoeff() ? relative : still;
     return {best.data(), best.data() + best.size()};
+}
+
+std::vector<double> SelfContact::vertex_offsets(const Eigen::MatrixX3d& q) const {
+    return translation_reduced_lengths(q - reference_);
 }
 
 double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& params,
@@ -752,15 +755,13 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
     // From α_i with distance d_i, [α_i, α_i + (d_i − F)/l] is therefore safe; iterate.
     // A pair at distance d0 >= s + l / fraction stays above its floor over all of [0, 1]
     // (below). Per-vertex bounds decide that for most pairs without touching coordinates:
-    // d0 >= (distance at find_candidates) − (offsets since), and l <= the largest |dx − m|
-    // of each primitive summed, m = the mean of dx (any common translation will do).
+    // d0 >= (distance at find_candidates) − (offsets since), and l <= the largest |dx − T|
+    // of each primitive summed, T one common translation of dx (any will do).
     const int n = static_cast<int>(candidates_.size());
     std::vector<double> offset, spread;
     if (n > 0) {
         offset = vertex_offsets(p);
-        const Eigen::RowVector3d mean = dx.colwise().mean();
-        const Eigen::VectorXd rel = (dx.rowwise() - mean).rowwise().norm();
-        spread.assign(rel.data(), rel.data() + rel.size());
+        spread = translation_reduced_lengths(dx);
     }
     std::vector<double> chunk_alpha(chunk_count(n), 1.0);
     for_each_chunk(n, [&](int c, int begin, int end) {

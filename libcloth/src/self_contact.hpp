@@ -39,6 +39,11 @@ struct DistanceRegime {
 /// Closest points and squared distance between point p and triangle (t0, t1, t2), handling
 /// degenerate (zero-area) triangles. Unsigned. \param regime if not null, receives the
 /// regime in the local numbering {p, t0, t1, t2} = {0, 1, 2, 3}.
+/// Per-vertex lengths of the displacements `d` (#V x 3) less one common translation T: T = 0
+/// or the mean of d, whichever gives the smaller maximum. A common translation brings no two
+/// points closer, so |d_a − T| + |d_b − T| bounds how much closer points a and b came.
+std::vector<double> translation_reduced_lengths(const Eigen::MatrixX3d& d);
+
 double point_triangle_distance_squared(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
                                        const Eigen::Vector3d& t1, const Eigen::Vector3d& t2,
                                        DistanceRegime* regime = nullptr);

@@ -690,9 +690,8 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
     // How far the cloth moves relative to itself (up to a common translation, which brings
     // no two of its points closer): what the self-contact candidates must cover.
     auto spread = [](const Eigen::MatrixX3d& d) {
-        if (d.rows() == 0) return 0.0;
-        const Eigen::RowVector3d mean = d.colwise().mean();
-        return std::min(d.rowwise().norm().maxCoeff(), (d.rowwise() - mean).rowwise().norm().maxCoeff());
+        const std::vector<double> lengths = internal::translation_reduced_lengths(d);
+        return lengths.empty() ? 0.0 : *std::max_element(lengths.begin(), lengths.end());
     };
     double last_spread = 0;
     const double v_spread = inertia_weight > 0 ? spread(v) : 0.0;
