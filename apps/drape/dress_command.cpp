@@ -204,6 +204,16 @@ fs::path make_output_folder(const std::string& out) {
     return dir;
 }
 
+// The pose with each arm raised just clear of the trunk where skinning passed it into the
+// torso (garment::clear_arms_from_trunk: no garment vertex there can be outside both); the
+// report goes to stderr, prefixed with `who`, when an arm had to move.
+body::Pose arms_cleared(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                        const std::string& who, garment::ArmClearanceSummary& arms) {
+    const body::Pose out = garment::clear_arms_from_trunk(model, shaped, pose, garment::ArmClearanceOptions{}, &arms);
+    if (arms.crossings_before > 0) std::cerr << who << ": " << arms.brief_report() << "\n";
+    return out;
+}
+
 void run_dress_outfit(const DressArgs& args);
 
 void run_dress(const DressArgs& args) {
@@ -226,9 +236,7 @@ void run_dress(const DressArgs& args) {
         body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
     garment::ArmClearanceSummary arms;
-    const body::Pose pose = args.keep_arms ? requested_pose
-                                           : garment::clear_arms_from_trunk(model, shaped, requested_pose, {}, &arms);
-    if (arms.crossings_before > 0) std::cerr << "drape dress: " << arms.brief_report() << "\n";
+    const body::Pose pose = args.keep_arms ? requested_pose : arms_cleared(model, shaped, requested_pose, "drape dress", arms);
     const body::PosedBody posed = body::pose_body(model, shaped, pose);
     const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, model, shaped, shape.measured) : given;
     const garment::Pattern pattern = make_pattern(sizing);
@@ -320,9 +328,7 @@ void run_dress_outfit(const DressArgs& args) {
     const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
     if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
     garment::ArmClearanceSummary arms;
-    const body::Pose pose = args.keep_arms ? requested_pose
-                                           : garment::clear_arms_from_trunk(model, shaped, requested_pose, {}, &arms);
-    if (arms.crossings_before > 0) std::cerr << "drape dress: " << arms.brief_report() << "\n";
+    const body::Pose pose = args.keep_arms ? requested_pose : arms_cleared(model, shaped, requested_pose, "drape dress", arms);
     std::vector<GarmentSizing> sizings;
     std::vector<garment::Pattern> patterns;
     for (GarmentType t : types) {
@@ -397,18 +403,14 @@ struct EvalDressArgs {
 using garment::EvalBody;
 using garment::kEvalBodies;
 
-// The evaluation poses on one body, each arm raised just clear of the trunk
-// (garment::clear_arms_from_trunk: skinning lets a thick arm held down pass into the torso,
-// where no garment vertex can be outside both); printed per pose.
+// The evaluation poses on one body, each arm raised just clear of the trunk.
 std::vector<body::Pose> arms_cleared(const body::BodyModel& model, const body::ShapedBody& shaped,
                                      const std::vector<body::Pose>& poses, const std::vector<std::string>& names,
                                      const std::string& body_name) {
     std::vector<body::Pose> out;
     for (size_t k = 0; k < poses.size(); ++k) {
-        garment::ArmClearanceSummary c;
-        out.push_back(garment::clear_arms_from_trunk(model, shaped, poses[k], garment::ArmClearanceOptions{}, &c));
-        if (c.crossings_before > 0)
-            std::cout << "drape eval-dress: " << body_name << " / " << names[k] << ": " << c.brief_report() << std::endl;
+        garment::ArmClearanceSummary arms;
+        out.push_back(arms_cleared(model, shaped, poses[k], "drape eval-dress: " + body_name + " / " + names[k], arms));
     }
     return out;
 }

@@ -3,6 +3,8 @@
 #include <drape/cloth/intersections.hpp>
 #include <drape/core/errors.hpp>
 
+#include "dressing_internal.hpp"
+
 #include <Eigen/Geometry>
 
 #include <array>
@@ -60,15 +62,8 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
             "clear_arms_from_trunk: the shaped body has ", shaped.vertices.rows(), " vertices, the model ",
             model.vertex_count());
     // Region of each face: that of its vertices' dominant joints when all three agree.
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
-    std::vector<int> vertex_region(size_t(model.vertex_count()), kOther);
-    for (Eigen::Index v = 0; v < W.rows(); ++v) {
-        double best = 0;
-        int joint = -1;
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, v); it; ++it)
-            if (it.value() > best) best = it.value(), joint = int(it.col());
-        if (joint >= 0) vertex_region[size_t(v)] = region_of_joint(joint);
-    }
+    std::vector<int> vertex_region;
+    for (const int joint : detail::dominant_joints(model)) vertex_region.push_back(joint >= 0 ? region_of_joint(joint) : kOther);
     std::vector<int> face_region(size_t(model.faces.rows()), kOther);
     for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
         const int r = vertex_region[size_t(model.faces(f, 0))];
@@ -108,18 +103,22 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
     };
     std::array<int, 2> n = crossings(pose);
     s.crossings_before = n[0] + n[1];
-    double right = 0, left = 0;
-    while ((n[0] > 0 && right + options.step_degrees <= options.max_degrees + 1e-9) ||
-           (n[1] > 0 && left + options.step_degrees <= options.max_degrees + 1e-9)) {
-        if (n[0] > 0 && right + options.step_degrees <= options.max_degrees + 1e-9) right += options.step_degrees;
-        if (n[1] > 0 && left + options.step_degrees <= options.max_degrees + 1e-9) left += options.step_degrees;
-        n = crossings(raised(right, left));
+    std::array<double, 2> raise{0, 0};  // right, left
+    for (;;) {
+        bool raised_one = false;
+        for (size_t arm = 0; arm < 2; ++arm)
+            if (n[arm] > 0 && raise[arm] + options.step_degrees <= options.max_degrees + 1e-9) {
+                raise[arm] += options.step_degrees;
+                raised_one = true;
+            }
+        if (!raised_one) break;
+        n = crossings(raised(raise[0], raise[1]));
     }
     s.crossings_after = n[0] + n[1];
-    s.right_degrees = right;
-    s.left_degrees = left;
+    s.right_degrees = raise[0];
+    s.left_degrees = raise[1];
     if (summary) *summary = s;
-    return raised(right, left);
+    return raised(raise[0], raise[1]);
 }
 
 }  // namespace drape::garment

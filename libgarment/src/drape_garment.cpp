@@ -537,19 +537,28 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
     std::vector<int> first;
     const GarmentMesh all = concatenate(meshes, &first);
     // Dresses every garment (those without sleeves with `sleeveless_passes` placement
-    // passes, 0 = automatic), each outside the ones before it; returns the layered state's
-    // crossings.
-    std::vector<Eigen::MatrixX3d> dressed(patterns.size());
+    // passes, 0 = automatic), each outside the ones before it; returns the layered state and
+    // its crossings. A garment with sleeves always gets the automatic count, so its dressed
+    // state is computed once and reused.
+    const Eigen::MatrixX3i sewn = detail::sewn_faces(all);
+    std::vector<std::pair<DressingSummary, Eigen::MatrixX3d>> with_sleeves(patterns.size());
     std::vector<DressingSummary> summaries;
     auto dress_all = [&](int sleeveless_passes) {
         summaries.clear();
+        std::vector<Eigen::MatrixX3d> dressed(patterns.size());
         for (size_t g = 0; g < patterns.size(); ++g) {
-            DressingOptions garment_options = dressing_options;
-            bool sleeves = false;
-            for (const Panel& panel : patterns[g].panels)
-                sleeves = sleeves || detail::role_of(patterns[g], panel.name) == detail::Role::sleeve;
-            if (!sleeves && garment_options.placement_passes == 0) garment_options.placement_passes = sleeveless_passes;
-            summaries.push_back(dress_garment(patterns[g], meshes[g], model, shaped, rest, garment_options, dressed[g]));
+            if (detail::has_sleeves(patterns[g])) {
+                auto& [summary, X] = with_sleeves[g];
+                if (X.size() == 0)
+                    summary = dress_garment(patterns[g], meshes[g], model, shaped, rest, dressing_options, X);
+                summaries.push_back(summary);
+                dressed[g] = X;
+            } else {
+                DressingOptions garment_options = dressing_options;
+                if (garment_options.placement_passes == 0) garment_options.placement_passes = sleeveless_passes;
+                summaries.push_back(
+                    dress_garment(patterns[g], meshes[g], model, shaped, rest, garment_options, dressed[g]));
+            }
             if (g == 0) continue;
             // Outside every garment before it: an envelope of their vertices about the trunk.
             detail::AxisEnvelope inner(trunk, 0.8);
@@ -566,26 +575,17 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
         }
         Eigen::MatrixX3d layered(all.cloth.vertex_count(), 3);
         for (size_t g = 0; g < meshes.size(); ++g) layered.middleRows(first[g], dressed[g].rows()) = dressed[g];
-        const std::vector<int> rep = detail::sewn_representatives(all.cloth.vertex_count(), all.stitches);
-        Eigen::MatrixX3i merged = all.cloth.faces;
-        for (Eigen::Index f = 0; f < merged.rows(); ++f)
-            for (int c = 0; c < 3; ++c) merged(f, c) = rep[size_t(merged(f, c))];
-        return std::make_pair(cloth::count_self_intersections(layered, merged), layered);
+        return std::make_pair(cloth::count_self_intersections(layered, sewn), layered);
     };
     auto [crossings, X0] = dress_all(0);
     // A garment without sleeves placed in one pass can leave the layered outfit crossed (the
     // t-shirt over the pants of the synthetic suite's Table 1: 8 crossings, 0 with 4 passes):
     // then the 4-pass placement is tried too and the state with fewer crossings kept.
     if (crossings > 0 && patterns.size() > 1) {
-        const std::vector<Eigen::MatrixX3d> one_pass = dressed;
         const std::vector<DressingSummary> one_pass_summaries = summaries;
         auto [more_crossings, more_X0] = dress_all(4);
-        if (more_crossings < crossings) {
-            X0 = std::move(more_X0);
-        } else {
-            dressed = one_pass;
-            summaries = one_pass_summaries;
-        }
+        if (more_crossings < crossings) X0 = std::move(more_X0);
+        else summaries = one_pass_summaries;
     }
     if (dressing) *dressing = summaries;
     const bool at_rest = pose.translation.isZero(0) && pose.rotations.isZero(0);

@@ -434,6 +434,31 @@ std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::a
     return parent;
 }
 
+Eigen::MatrixX3i sewn_faces(const GarmentMesh& mesh) {
+    const std::vector<int> rep = sewn_representatives(mesh.cloth.vertex_count(), mesh.stitches);
+    Eigen::MatrixX3i merged = mesh.cloth.faces;
+    for (Eigen::Index f = 0; f < merged.rows(); ++f)
+        for (int c = 0; c < 3; ++c) merged(f, c) = rep[size_t(merged(f, c))];
+    return merged;
+}
+
+bool has_sleeves(const Pattern& pattern) {
+    for (const Panel& panel : pattern.panels)
+        if (role_of(pattern, panel.name) == Role::sleeve) return true;
+    return false;
+}
+
+std::vector<int> dominant_joints(const body::BodyModel& model) {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    std::vector<int> dominant(size_t(W.rows()), -1);
+    for (Eigen::Index b = 0; b < W.rows(); ++b) {
+        double w = 0;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, b); it; ++it)
+            if (it.value() > w) w = it.value(), dominant[size_t(b)] = int(it.col());
+    }
+    return dominant;
+}
+
 std::vector<LayerPair> layer_pairs(const GarmentMesh& mesh, const Eigen::MatrixX3d& X, double radius_m,
                                    double rest_radius_m) {
     const Eigen::MatrixX3i& F = mesh.cloth.faces;
@@ -511,11 +536,7 @@ GarmentStateCheck check_garment_state(const GarmentMesh& mesh, const Eigen::Matr
     require(layer_gap_m > 0 && std::isfinite(layer_gap_m), "check_garment_state: layer_gap_m = ", layer_gap_m,
             " must be > 0");
     GarmentStateCheck r;
-    const std::vector<int> rep = detail::sewn_representatives(nv, mesh.stitches);
-    Eigen::MatrixX3i merged = mesh.cloth.faces;
-    for (Eigen::Index f = 0; f < merged.rows(); ++f)
-        for (int c = 0; c < 3; ++c) merged(f, c) = rep[size_t(merged(f, c))];
-    r.self_intersections = cloth::count_self_intersections(positions, merged);
+    r.self_intersections = cloth::count_self_intersections(positions, detail::sewn_faces(mesh));
     const cloth::Obstacle body(body_vertices, body_faces);
     for (int v = 0; v < nv; ++v) {
         const cloth::ObstacleQuery q = body.closest(positions.row(v).transpose(), std::numeric_limits<double>::infinity());
@@ -650,12 +671,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     const int nbins = int(std::ceil((rest_local.col(1).maxCoeff() - y_lo) / bin)) + 1;
     std::vector<Eigen::Vector4d> box(size_t(nbins), Eigen::Vector4d(1e300, -1e300, 1e300, -1e300));
     const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
-    std::vector<int> dominant(size_t(shaped.vertices.rows()), -1);  // joint of the largest weight
-    for (Eigen::Index b = 0; b < shaped.vertices.rows(); ++b) {
-        double w = 0;
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, b); it; ++it)
-            if (it.value() > w) w = it.value(), dominant[size_t(b)] = int(it.col());
-    }
+    const std::vector<int> dominant = detail::dominant_joints(model);  // joint of the largest weight
     {
         const std::set<int> trunk = {index(Joint::pelvis), index(Joint::spine), index(Joint::chest),
                                      index(Joint::neck), index(Joint::left_clavicle),
@@ -878,13 +894,7 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     if (options.placement_passes > 0)
         return dress_with_passes(pattern, mesh, model, shaped, pose, options, options.placement_passes, positions);
     constexpr int kSleevePasses = 4;
-    bool has_sleeves = false;
-    for (Eigen::Index v = 0; v < mesh.panel_of_vertex.size() && !has_sleeves; ++v) {
-        const int panel = mesh.panel_of_vertex(v);
-        has_sleeves = panel >= 0 && panel < int(pattern.panels.size()) &&
-                      detail::role_of(pattern, pattern.panels[size_t(panel)].name) == detail::Role::sleeve;
-    }
-    if (has_sleeves) return dress_with_passes(pattern, mesh, model, shaped, pose, options, kSleevePasses, positions);
+    if (detail::has_sleeves(pattern)) return dress_with_passes(pattern, mesh, model, shaped, pose, options, kSleevePasses, positions);
     DressingSummary one = dress_with_passes(pattern, mesh, model, shaped, pose, options, 1, positions);
     if (one.self_intersections == 0) return one;
     Eigen::MatrixX3d more_positions;

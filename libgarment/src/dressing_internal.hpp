@@ -1,6 +1,7 @@
 // Shared between the dressing_*.cpp files (not installed).
 #pragma once
 
+#include <drape/body/body_model.hpp>
 #include <drape/body/skeleton.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern.hpp>
@@ -78,6 +79,16 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
 
 /// Per vertex, one representative of its stitched group (vertices sewn together, transitively).
 std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::array<int, 2>>& stitches);
+
+/// The mesh's faces with every vertex replaced by its stitched group's representative: the
+/// sewn surface, whose crossings are counted as the simulator counts them.
+Eigen::MatrixX3i sewn_faces(const GarmentMesh& mesh);
+
+/// Whether any panel of the pattern is a sleeve.
+bool has_sleeves(const Pattern& pattern);
+
+/// Per body vertex, the joint of its largest skinning weight (-1 without weights).
+std::vector<int> dominant_joints(const body::BodyModel& model);
 
 /// A vertex and a triangle that may come into contact (see layer_pairs).
 struct LayerPair {

@@ -48,9 +48,7 @@ UntangleSummary untangle_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d
             " rows (need ", nv, ", all finite)");
     UntangleSummary summary;
     const std::vector<int> rep = detail::sewn_representatives(nv, mesh.stitches);
-    Eigen::MatrixX3i merged = mesh.cloth.faces;
-    for (Eigen::Index f = 0; f < merged.rows(); ++f)
-        for (int c = 0; c < 3; ++c) merged(f, c) = rep[size_t(merged(f, c))];
+    const Eigen::MatrixX3i merged = detail::sewn_faces(mesh);
     std::vector<std::vector<int>> ring(static_cast<size_t>(nv));  // between representatives
     for (const auto& e : detail::mesh_edges(merged)) {
         ring[size_t(e[0])].push_back(e[1]);

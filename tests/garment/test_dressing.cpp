@@ -611,39 +611,18 @@ TEST_CASE("dressing eval: the posed eval bodies' own surface overlaps (armpits, 
     // Linear blend skinning lets touching body parts pass into each other (the arm into
     // the torso at the armpit with the arms down, the thighs of heavy bodies): a garment
     // vertex caught there cannot be outside both. Prints, per eval body and pose, the
-    // crossing triangle pairs of the body mesh by region (arms, legs, trunk).
+    // crossing triangle pairs of the body mesh, those between an arm and the trunk, and
+    // what clear_arms_from_trunk makes of them.
     const body::BodyModel& model = body::BodyModel::default_model();
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
     for (const EvalBody& eb : kEvalBodies) {
         const body::ShapedBody shaped = shaped_eval_body(model, eb);
         for (const auto pose : {body::NamedPose::a_pose, body::NamedPose::arms_down, body::NamedPose::walking}) {
-            const Eigen::MatrixXd V = body::pose_body(model, shaped, body::named_pose(pose)).vertices;
-            const Eigen::MatrixX3d P = V;
-            std::vector<std::pair<int, int>> pairs;
-            const int crossings = drape::cloth::count_self_intersections(P, model.faces, &pairs);
-            // Where: each face's region by the dominant joint of its first vertex.
-            auto region = [&](int f) {
-                const int v = model.faces(f, 0);
-                double best = 0;
-                int joint = 0;
-                for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, v); it; ++it)
-                    if (it.value() > best) best = it.value(), joint = int(it.col());
-                if (joint >= 6 && joint <= 9) return std::string("right arm");
-                if (joint >= 10 && joint <= 13) return std::string("left arm");
-                if (joint >= 14 && joint <= 17) return std::string("right leg");
-                if (joint >= 18) return std::string("left leg");
-                return std::string("trunk");
-            };
-            std::map<std::string, int> where;
-            for (const auto& [a, b] : pairs) {
-                std::string ra = region(a), rb = region(b);
-                if (rb < ra) std::swap(ra, rb);
-                ++where[ra + " / " + rb];
-            }
-            std::string list;
-            for (const auto& [k, n] : where) list += " " + k + ": " + std::to_string(n) + ";";
-            std::printf("%s pose %d: %d crossing triangle pairs of the body surface:%s\n", eb.name,
-                        static_cast<int>(pose), crossings, list.c_str());
+            const Eigen::MatrixX3d P = body::pose_body(model, shaped, body::named_pose(pose)).vertices;
+            ArmClearanceSummary arms;
+            clear_arms_from_trunk(model, shaped, body::named_pose(pose), {}, &arms);
+            std::printf("%s pose %d: %d crossing triangle pairs of the body surface, %s\n", eb.name,
+                        static_cast<int>(pose), drape::cloth::count_self_intersections(P, model.faces),
+                        arms.brief_report().c_str());
         }
     }
 }
