@@ -72,15 +72,10 @@ cv::Mat bare_arm_pixels(const cv::Mat& photo, const cv::Mat& garment, const cv::
     const Joint arms[2][3] = {{Joint::right_shoulder, Joint::right_elbow, Joint::right_hand},
                               {Joint::left_shoulder, Joint::left_elbow, Joint::left_hand}};
     for (int k = 0; k < 2; ++k) {
-        const Eigen::Vector2d a = j[arms[k][0]], b = j[arms[k][1]], c = j[arms[k][2]];
-        const double l1 = (b - a).norm(), l2 = (c - b).norm();
         cv::Mat band = cv::Mat::zeros(photo.size(), CV_8UC1);
         for (double s = 0; s <= runs.run_px[k]; s += 1.0) {
-            const bool upper = s <= l1;
-            const double len = upper ? l1 : l2;
-            if (len <= 0) continue;
-            const Eigen::Vector2d from = upper ? a : b, to = upper ? b : c;
-            const Eigen::Vector2d p = from + (to - from) * ((upper ? s : s - l1) / len);
+            Eigen::Vector2d p;
+            if (!detail::arm_point(j[arms[k][0]], j[arms[k][1]], j[arms[k][2]], s, p)) continue;
             cv::circle(band, cv::Point(int(std::floor(p.x())), int(std::floor(p.y()))), half,
                        cv::Scalar(255), cv::FILLED);
         }

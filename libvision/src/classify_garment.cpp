@@ -113,6 +113,19 @@ double ArmRuns::max_fraction() const {
     return best;
 }
 
+bool arm_point(const Eigen::Vector2d& shoulder, const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand,
+               double s, Eigen::Vector2d& point, Eigen::Vector2d* direction) {
+    const double l1 = (elbow - shoulder).norm();
+    const bool upper = s <= l1;
+    const Eigen::Vector2d from = upper ? shoulder : elbow, to = upper ? elbow : hand;
+    const double len = (to - from).norm();
+    if (len <= 0) return false;
+    const Eigen::Vector2d d = (to - from) / len;
+    point = from + d * (upper ? s : s - l1);
+    if (direction) *direction = d;
+    return true;
+}
+
 ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j, const cv::Mat& hiding) {
     const double H = j.body_height_px();
     const int radius = std::max(1, int(std::lround(0.008 * H)));
@@ -128,12 +141,8 @@ ArmRuns sleeve_runs(const cv::Mat& mask, const Joints& j, const cv::Mat& hiding)
         out.length_px[k] = l1 + l2;
         double run = 0, gap_start = -1;
         for (double s = 0; s <= l1 + l2; s += 1.0) {
-            const bool upper = s <= l1;
-            const double len = upper ? l1 : l2;
-            const Eigen::Vector2d from = upper ? a : b, to = upper ? b : c;
-            if (len <= 0) continue;
-            const Eigen::Vector2d d = (to - from) / len;
-            const Eigen::Vector2d p = from + d * (upper ? s : s - l1);
+            Eigen::Vector2d p, d;
+            if (!arm_point(a, b, c, s, p, &d)) continue;
             Eigen::Vector2d n(-d.y(), d.x());
             if (n.dot(p - centre) < 0) n = -n;
             if (covered(mask, p, radius) && covered(mask, p + beside * n, radius)) {

@@ -30,6 +30,12 @@ double polyline_x_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
 /// Mid-point between the legs at row y (each leg: hip -> knee -> ankle).
 Eigen::Vector2d between_legs(const Joints& j, double y);
 
+/// The point at arc length s (px) along the arm shoulder -> elbow -> hand (the upper arm
+/// up to its length, then the forearm) and, if `direction` is given, the unit direction of
+/// that segment. False where that segment has zero length.
+bool arm_point(const Eigen::Vector2d& shoulder, const Eigen::Vector2d& elbow, const Eigen::Vector2d& hand,
+               double s, Eigen::Vector2d& point, Eigen::Vector2d* direction = nullptr);
+
 /// How far a garment runs down each arm from the shoulder (docs/vision.md, "Garment type").
 struct ArmRuns {
     double run_px[2] = {0, 0};     ///< covered length from the shoulder, right and left arm

@@ -541,8 +541,9 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
     // Bare arms the cut gave to the upper garment (a pale or over-exposed arm beside a
     // white top) would read as sleeves: garment pixels along an arm with the skin's
     // chromaticity rather than the torso fabric's go back to skin (bare_arms.hpp).
+    const cv::Mat hair_mask = result.labels == hair;  // unchanged below
     result.labels.setTo(skin, bare_arm_pixels(image, result.labels == kUpperTmp,
-                                              result.labels == skin, joints, result.labels == hair));
+                                              result.labels == skin, joints, hair_mask));
 
     // Classify and write the garments' class ids.
     const double min_area = 0.002 * double(result.labels.total());
@@ -562,7 +563,7 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
                 result.labels.setTo(o.table.background_id(), mask);
                 continue;
             }
-            const GarmentShapeCues cues = measure_shape_cues(mask, joints, result.labels == hair);
+            const GarmentShapeCues cues = measure_shape_cues(mask, joints, hair_mask);
             GarmentType t = part == GarmentPart::upper ? classify_upper(cues) : classify_lower(cues);
             if (o.hint && part_of(*o.hint) == part) t = *o.hint;
             assign(mask, t);
