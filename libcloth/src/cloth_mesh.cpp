@@ -68,6 +68,17 @@ void ClothMesh::validate() const {
         require(area > 1e-12, "ClothMesh: pattern triangle of face ", f, " has signed area ",
                 area, " m² (degenerate or clockwise; must be > 1e-12)");
     }
+    // A pattern point is the rest position of one vertex (a vertex may have several: one
+    // per panel of a seam).
+    std::vector<int> point_vertex(static_cast<std::size_t>(np), -1);
+    for (Eigen::Index f = 0; f < faces.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            int& v = point_vertex[static_cast<std::size_t>(pattern_faces(f, k))];
+            require(v < 0 || v == faces(f, k), "ClothMesh: pattern point ", pattern_faces(f, k),
+                    " is a corner of vertex ", v, " and of vertex ", faces(f, k), " (face ", f,
+                    " corner ", k, "); a pattern point belongs to one vertex");
+            v = faces(f, k);
+        }
     std::map<std::uint64_t, std::vector<std::pair<int, int>>> uses;  // key -> (face, from)
     for (Eigen::Index f = 0; f < faces.rows(); ++f)
         for (int k = 0; k < 3; ++k) {

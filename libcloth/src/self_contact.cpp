@@ -468,73 +468,113 @@ void SelfContact::set_rest_filter(const Eigen::MatrixX2d& vertex_pattern,
     require(vertex_pattern.rows() == vertex_count_ && static_cast<int>(piece.size()) == vertex_count_,
             "SelfContact::set_rest_filter: expected ", vertex_count_, " vertices, got ",
             vertex_pattern.rows(), " pattern rows and ", piece.size(), " piece ids");
+    std::vector<int> identity(static_cast<std::size_t>(vertex_count_));
+    for (int v = 0; v < vertex_count_; ++v) identity[static_cast<std::size_t>(v)] = v;
+    set_rest_filter(vertex_pattern, identity, faces_, piece, min_distance_m);
+}
+
+void SelfContact::set_rest_filter(const Eigen::MatrixX2d& pattern, const std::vector<int>& point_vertex,
+                                  const Eigen::MatrixX3i& pattern_faces, const std::vector<int>& point_piece,
+                                  double min_distance_m) {
+    const int np = static_cast<int>(pattern.rows()), nf = static_cast<int>(faces_.rows());
+    require(static_cast<int>(point_vertex.size()) == np && static_cast<int>(point_piece.size()) == np,
+            "SelfContact::set_rest_filter: ", np, " pattern points, ", point_vertex.size(), " point vertices and ",
+            point_piece.size(), " piece ids (need one each)");
+    require(pattern_faces.rows() == nf, "SelfContact::set_rest_filter: ", pattern_faces.rows(),
+            " pattern faces for ", nf, " faces");
     require(std::isfinite(min_distance_m) && min_distance_m >= 0,
             "SelfContact::set_rest_filter: min_distance_m = ", min_distance_m, " must be >= 0");
-    require(vertex_pattern.allFinite(), "SelfContact::set_rest_filter: pattern coordinates are not finite");
+    require(pattern.allFinite(), "SelfContact::set_rest_filter: pattern coordinates are not finite");
+    for (int i = 0; i < np; ++i)
+        require(point_vertex[static_cast<std::size_t>(i)] >= 0 && point_vertex[static_cast<std::size_t>(i)] < vertex_count_,
+                "SelfContact::set_rest_filter: pattern point ", i, " belongs to vertex ",
+                point_vertex[static_cast<std::size_t>(i)], ", out of range [0, ", vertex_count_, ")");
+    for (int f = 0; f < nf; ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int q = pattern_faces(f, c);
+            require(q >= 0 && q < np && point_vertex[static_cast<std::size_t>(q)] == faces_(f, c),
+                    "SelfContact::set_rest_filter: corner ", c, " of face ", f, " is pattern point ", q,
+                    ", which is not a point of its vertex ", faces_(f, c));
+        }
     rest_face_start_.clear();
     rest_faces_.clear();
     rest_edge_start_.clear();
     rest_edges_.clear();
     if (min_distance_m <= 0 || vertex_count_ == 0) return;
     // The pairs are found once here (the pattern does not change), so that find_candidates
-    // looks them up instead of measuring pattern distances for every pair it meets.
-    Eigen::MatrixX3d rest = Eigen::MatrixX3d::Zero(vertex_count_, 3);
-    rest.leftCols<2>() = vertex_pattern;
-    const int nf = static_cast<int>(faces_.rows()), ne = static_cast<int>(edges_.size());
+    // looks them up instead of measuring pattern distances for every pair it meets. A vertex
+    // may have several pattern points (a welded seam: one per panel it joins); a face's rest
+    // triangle is its pattern corners, so a pair is tested in the pattern of each panel the
+    // two share, never across panels.
+    Eigen::MatrixX3d rest = Eigen::MatrixX3d::Zero(np, 3);
+    rest.leftCols<2>() = pattern;
     const double r2 = min_distance_m * min_distance_m;
-    auto same_piece = [&](std::initializer_list<int> vs) {
-        const int first = piece[static_cast<std::size_t>(*vs.begin())];
-        for (int v : vs)
-            if (piece[static_cast<std::size_t>(v)] != first) return false;
+    auto same_piece = [&](std::initializer_list<int> points) {
+        const int first = point_piece[static_cast<std::size_t>(*points.begin())];
+        for (int q : points)
+            if (point_piece[static_cast<std::size_t>(q)] != first) return false;
         return true;
     };
+    // The pattern's edges, each with its mesh edge (index into edges_).
+    std::vector<std::array<int, 3>> pattern_edges;  // point a < point b, mesh edge
+    for (int f = 0; f < nf; ++f)
+        for (int c = 0; c < 3; ++c) {
+            const int qa = pattern_faces(f, c), qb = pattern_faces(f, (c + 1) % 3);
+            const std::array<int, 2> me = {std::min(faces_(f, c), faces_(f, (c + 1) % 3)),
+                                           std::max(faces_(f, c), faces_(f, (c + 1) % 3))};
+            const int e = static_cast<int>(std::lower_bound(edges_.begin(), edges_.end(), me) - edges_.begin());
+            pattern_edges.push_back({std::min(qa, qb), std::max(qa, qb), e});
+        }
+    std::sort(pattern_edges.begin(), pattern_edges.end());
+    pattern_edges.erase(std::unique(pattern_edges.begin(), pattern_edges.end()), pattern_edges.end());
+    const int npe = static_cast<int>(pattern_edges.size());
     double mean_edge = 0;
-    for (const auto& e : edges_) mean_edge += (rest.row(e[0]) - rest.row(e[1])).norm();
-    mean_edge /= std::max(ne, 1);
+    for (const auto& e : pattern_edges) mean_edge += (rest.row(e[0]) - rest.row(e[1])).norm();
+    mean_edge /= std::max(npe, 1);
     const double cell = std::max(mean_edge + 2 * min_distance_m, 1e-9);
-    // grid_pairs lists the pairs by row, each row's items in increasing order.
-    auto to_rows = [](const std::vector<FoundPair>& found, int rows, std::vector<int>& start,
+    // Rows of (row, item) pairs, sorted and without repeats (a vertex with two pattern points
+    // may find a face twice).
+    auto to_rows = [](std::vector<std::array<int, 2>> found, int rows, std::vector<int>& start,
                       std::vector<int>& items) {
+        std::sort(found.begin(), found.end());
+        found.erase(std::unique(found.begin(), found.end()), found.end());
         start.assign(static_cast<std::size_t>(rows) + 1, 0);
-        for (const FoundPair& f : found) ++start[static_cast<std::size_t>(f.pair.v[0]) + 1];
+        for (const auto& f : found) ++start[static_cast<std::size_t>(f[0]) + 1];
         for (int r = 0; r < rows; ++r) start[static_cast<std::size_t>(r) + 1] += start[static_cast<std::size_t>(r)];
         items.resize(found.size());
-        std::vector<int> fill(start.begin(), start.end() - 1);
-        for (const FoundPair& f : found)
-            items[static_cast<std::size_t>(fill[static_cast<std::size_t>(f.pair.v[0])]++)] = f.pair.v[1];
+        for (std::size_t k = 0; k < found.size(); ++k) items[k] = found[k][1];
     };
 
     std::vector<Eigen::AlignedBox3d> tri_boxes(static_cast<std::size_t>(nf));
     for (int f = 0; f < nf; ++f) {
-        const int v[3] = {faces_(f, 0), faces_(f, 1), faces_(f, 2)};
-        tri_boxes[static_cast<std::size_t>(f)] = box_of(rest, v, 3, min_distance_m);
+        const int q[3] = {pattern_faces(f, 0), pattern_faces(f, 1), pattern_faces(f, 2)};
+        tri_boxes[static_cast<std::size_t>(f)] = box_of(rest, q, 3, min_distance_m);
     }
-    // FoundPair is reused as (row, item) here: v[0] = vertex or edge, v[1] = face or edge.
-    const std::vector<FoundPair> vt = grid_pairs<FoundPair>(
-        vertex_count_, UniformGrid(tri_boxes, cell),
-        [&](int v) { return Eigen::AlignedBox3d(rest.row(v).transpose(), rest.row(v).transpose()); },
-        [&](int v, int f, std::vector<FoundPair>& out) {
-            const int t0 = faces_(f, 0), t1 = faces_(f, 1), t2 = faces_(f, 2);
-            if (!same_piece({v, t0, t1, t2})) return;
-            if (point_triangle_distance_squared(rest.row(v), rest.row(t0), rest.row(t1), rest.row(t2)) < r2)
-                out.push_back({{ContactPair::Kind::vertex_triangle, {v, f, 0, 0}}, 0.0});
+    const std::vector<std::array<int, 2>> vt = grid_pairs<std::array<int, 2>>(
+        np, UniformGrid(tri_boxes, cell),
+        [&](int q) { return Eigen::AlignedBox3d(rest.row(q).transpose(), rest.row(q).transpose()); },
+        [&](int q, int f, std::vector<std::array<int, 2>>& out) {
+            const int t0 = pattern_faces(f, 0), t1 = pattern_faces(f, 1), t2 = pattern_faces(f, 2);
+            if (!same_piece({q, t0, t1, t2})) return;
+            if (point_triangle_distance_squared(rest.row(q), rest.row(t0), rest.row(t1), rest.row(t2)) < r2)
+                out.push_back({point_vertex[static_cast<std::size_t>(q)], f});
         });
     to_rows(vt, vertex_count_, rest_face_start_, rest_faces_);
 
-    std::vector<Eigen::AlignedBox3d> edge_boxes(static_cast<std::size_t>(ne));
-    for (int e = 0; e < ne; ++e) edge_boxes[static_cast<std::size_t>(e)] = box_of(rest, edges_[static_cast<std::size_t>(e)].data(), 2, min_distance_m);
-    const std::vector<FoundPair> ee = grid_pairs<FoundPair>(
-        ne, UniformGrid(edge_boxes, cell),
-        [&](int e) { return box_of(rest, edges_[static_cast<std::size_t>(e)].data(), 2, 0.0); },
-        [&](int e, int o, std::vector<FoundPair>& out) {
-            if (o <= e) return;
-            const auto& a = edges_[static_cast<std::size_t>(e)];
-            const auto& b = edges_[static_cast<std::size_t>(o)];
-            if (!same_piece({a[0], a[1], b[0], b[1]})) return;
+    std::vector<Eigen::AlignedBox3d> edge_boxes(static_cast<std::size_t>(npe));
+    for (int e = 0; e < npe; ++e)
+        edge_boxes[static_cast<std::size_t>(e)] = box_of(rest, pattern_edges[static_cast<std::size_t>(e)].data(), 2, min_distance_m);
+    const std::vector<std::array<int, 2>> ee = grid_pairs<std::array<int, 2>>(
+        npe, UniformGrid(edge_boxes, cell),
+        [&](int e) { return box_of(rest, pattern_edges[static_cast<std::size_t>(e)].data(), 2, 0.0); },
+        [&](int e, int o, std::vector<std::array<int, 2>>& out) {
+            const auto& a = pattern_edges[static_cast<std::size_t>(e)];
+            const auto& b = pattern_edges[static_cast<std::size_t>(o)];
+            if (a[2] == b[2] || !same_piece({a[0], a[1], b[0], b[1]})) return;
             if (segment_segment_distance_squared(rest.row(a[0]), rest.row(a[1]), rest.row(b[0]), rest.row(b[1])) < r2)
-                out.push_back({{ContactPair::Kind::edge_edge, {e, o, 0, 0}}, 0.0});
+                out.push_back({std::min(a[2], b[2]), std::max(a[2], b[2])});
         });
-    to_rows(ee, ne, rest_edge_start_, rest_edges_);
+    to_rows(ee, static_cast<int>(edges_.size()), rest_edge_start_, rest_edges_);
 }
 
 bool SelfContact::rest_near_vertex_triangle(int v, int f) const {

@@ -166,6 +166,18 @@ public:
     /// 	hrow drape::InvalidInput on a size mismatch or a negative distance.
     void set_rest_filter(const Eigen::MatrixX2d& vertex_pattern, const std::vector<int>& piece,
                          double min_distance_m);
+    /// The same for a mesh whose vertices may have several pattern points (a welded seam
+    /// joins panels: its vertices have one point per panel): a vertex and a face (or two
+    /// edges) are near at rest if some pattern point of the vertex and the face's pattern
+    /// corners lie on one piece within `min_distance_m`. Pairs are never compared across
+    /// pieces (one panel's layout says nothing about where another's lies).
+    /// \param pattern P x 2 points (m); \param point_vertex the vertex of each point;
+    /// \param pattern_faces #F x 3, face f's corners as points (point_vertex of corner c is
+    /// faces(f, c)); \param point_piece P piece ids.
+    /// \throw drape::InvalidInput on sizes, indices out of range or corners not of their vertex.
+    void set_rest_filter(const Eigen::MatrixX2d& pattern, const std::vector<int>& point_vertex,
+                         const Eigen::MatrixX3i& pattern_faces, const std::vector<int>& point_piece,
+                         double min_distance_m);
 
 private:
     bool excluded(int a, int b) const;

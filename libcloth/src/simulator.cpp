@@ -638,25 +638,26 @@ struct Simulator::Impl {
     }
 
     // Pairs closer than 2h in the pattern are neighbours within one layer (see
-    // SelfContact::set_rest_filter). Per-vertex pattern point: the first corner's; pieces:
-    // connected components of the faces.
+    // SelfContact::set_rest_filter). Per pattern point (a face corner's rest position; a
+    // welded seam vertex has one per panel) its vertex; pieces: connected components of the
+    // pattern faces, i.e. the panels.
     void set_rest_filter() {
-        const int nv = mesh.vertex_count();
-        Eigen::MatrixX2d uv = Eigen::MatrixX2d::Zero(nv, 2);
-        std::vector<bool> seen(static_cast<std::size_t>(nv), false);
-        DisjointSets pieces(nv);
+        const int np = static_cast<int>(mesh.pattern.rows());
+        std::vector<int> point_vertex(static_cast<std::size_t>(np), -1);
+        DisjointSets pieces(np);
         for (int f = 0; f < mesh.face_count(); ++f)
             for (int c = 0; c < 3; ++c) {
-                const int vtx = mesh.faces(f, c);
-                if (!seen[static_cast<std::size_t>(vtx)]) {
-                    uv.row(vtx) = mesh.pattern.row(mesh.pattern_faces(f, c));
-                    seen[static_cast<std::size_t>(vtx)] = true;
-                }
-                pieces.join(vtx, mesh.faces(f, (c + 1) % 3));
+                point_vertex[static_cast<std::size_t>(mesh.pattern_faces(f, c))] = mesh.faces(f, c);
+                pieces.join(mesh.pattern_faces(f, c), mesh.pattern_faces(f, (c + 1) % 3));
             }
-        std::vector<int> piece(static_cast<std::size_t>(nv));
-        for (int i = 0; i < nv; ++i) piece[static_cast<std::size_t>(i)] = pieces.find(i);
-        self_contact.set_rest_filter(uv, piece, 2 * options.contact_thickness_m);
+        // Points no face uses take vertex 0 on a piece of their own (never near anything).
+        std::vector<int> piece(static_cast<std::size_t>(np));
+        for (int i = 0; i < np; ++i) {
+            piece[static_cast<std::size_t>(i)] = pieces.find(i);
+            if (point_vertex[static_cast<std::size_t>(i)] < 0) point_vertex[static_cast<std::size_t>(i)] = 0;
+        }
+        self_contact.set_rest_filter(mesh.pattern, point_vertex, mesh.pattern_faces, piece,
+                                     2 * options.contact_thickness_m);
     }
 
     double max_stitch_gap(const Eigen::MatrixX3d& p) const {

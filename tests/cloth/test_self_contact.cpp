@@ -129,37 +129,25 @@ struct RestFilter {
     double min_distance = 0;
 };
 
-std::vector<ContactPair> brute_force_pairs(const SelfContact& sc, const Eigen::MatrixX3d& p,
-                                           const Eigen::MatrixX3i& faces, double radius,
-                                           const std::vector<std::pair<int, int>>& excluded,
-                                           const RestFilter* rest = nullptr) {
+// All admissible pairs closer than `radius` by O(n²) enumeration, in SelfContact's order,
+// leaving out vertex v / face f with rest_vt(v, f) and edges e < o with rest_ee(e, o).
+std::vector<ContactPair> brute_force_pairs_filtered(const SelfContact& sc, const Eigen::MatrixX3d& p,
+                                                    const Eigen::MatrixX3i& faces, double radius,
+                                                    const std::vector<std::pair<int, int>>& excluded,
+                                                    const std::function<bool(int, int)>& rest_vt,
+                                                    const std::function<bool(int, int)>& rest_ee) {
     auto excl = [&](int a, int b) {
         if (a == b) return true;
         for (auto [i, j] : excluded)
             if ((i == a && j == b) || (i == b && j == a)) return true;
         return false;
     };
-    auto one_piece = [&](int a, int b, int c, int d) {
-        const auto& pc = rest->piece;
-        return pc[a] == pc[b] && pc[a] == pc[c] && pc[a] == pc[d];
-    };
-    const double rest2 = rest ? rest->min_distance * rest->min_distance : 0.0;
-    auto rest_near_vt = [&](int v, int t0, int t1, int t2) {
-        return rest && one_piece(v, t0, t1, t2) &&
-               point_triangle_distance_squared(rest->pattern.row(v), rest->pattern.row(t0),
-                                               rest->pattern.row(t1), rest->pattern.row(t2)) < rest2;
-    };
-    auto rest_near_ee = [&](int a0, int a1, int b0, int b1) {
-        return rest && one_piece(a0, a1, b0, b1) &&
-               segment_segment_distance_squared(rest->pattern.row(a0), rest->pattern.row(a1),
-                                                rest->pattern.row(b0), rest->pattern.row(b1)) < rest2;
-    };
     std::vector<ContactPair> out;
     for (int v = 0; v < p.rows(); ++v)
         for (int f = 0; f < faces.rows(); ++f) {
             const int t0 = faces(f, 0), t1 = faces(f, 1), t2 = faces(f, 2);
             if (excl(v, t0) || excl(v, t1) || excl(v, t2)) continue;
-            if (rest_near_vt(v, t0, t1, t2)) continue;
+            if (rest_vt(v, f)) continue;
             if (point_triangle_distance_squared(p.row(v), p.row(t0), p.row(t1), p.row(t2)) <
                 radius * radius)
                 out.push_back({Kind::vertex_triangle, {v, t0, t1, t2}});
@@ -169,12 +157,39 @@ std::vector<ContactPair> brute_force_pairs(const SelfContact& sc, const Eigen::M
         for (std::size_t o = e + 1; o < edges.size(); ++o) {
             const int a0 = edges[e][0], a1 = edges[e][1], b0 = edges[o][0], b1 = edges[o][1];
             if (excl(a0, b0) || excl(a0, b1) || excl(a1, b0) || excl(a1, b1)) continue;
-            if (rest_near_ee(a0, a1, b0, b1)) continue;
+            if (rest_ee(int(e), int(o))) continue;
             if (segment_segment_distance_squared(p.row(a0), p.row(a1), p.row(b0), p.row(b1)) <
                 radius * radius)
                 out.push_back({Kind::edge_edge, {a0, a1, b0, b1}});
         }
     return out;
+}
+
+std::vector<ContactPair> brute_force_pairs(const SelfContact& sc, const Eigen::MatrixX3d& p,
+                                           const Eigen::MatrixX3i& faces, double radius,
+                                           const std::vector<std::pair<int, int>>& excluded,
+                                           const RestFilter* rest = nullptr) {
+    auto one_piece = [&](int a, int b, int c, int d) {
+        const auto& pc = rest->piece;
+        return pc[a] == pc[b] && pc[a] == pc[c] && pc[a] == pc[d];
+    };
+    const double rest2 = rest ? rest->min_distance * rest->min_distance : 0.0;
+    const auto& edges = sc.edges();
+    return brute_force_pairs_filtered(
+        sc, p, faces, radius, excluded,
+        [&](int v, int f) {
+            const int t0 = faces(f, 0), t1 = faces(f, 1), t2 = faces(f, 2);
+            return rest && one_piece(v, t0, t1, t2) &&
+                   point_triangle_distance_squared(rest->pattern.row(v), rest->pattern.row(t0),
+                                                   rest->pattern.row(t1), rest->pattern.row(t2)) < rest2;
+        },
+        [&](int e, int o) {
+            const int a0 = edges[size_t(e)][0], a1 = edges[size_t(e)][1], b0 = edges[size_t(o)][0],
+                      b1 = edges[size_t(o)][1];
+            return rest && one_piece(a0, a1, b0, b1) &&
+                   segment_segment_distance_squared(rest->pattern.row(a0), rest->pattern.row(a1),
+                                                    rest->pattern.row(b0), rest->pattern.row(b1)) < rest2;
+        });
 }
 
 bool same_pairs(const std::vector<ContactPair>& a, const std::vector<ContactPair>& b) {
@@ -360,6 +375,132 @@ TEST_CASE("self-contact rest filter leaves out exactly the pairs near in the pat
     CHECK(sc.candidates().size() < 0.6 * unfiltered.size());
     CHECK_THROWS_AS(sc.set_rest_filter(rest.pattern.leftCols<2>(), {0, 1}, 0.01), drape::InvalidInput);
     CHECK_THROWS_AS(sc.set_rest_filter(rest.pattern.leftCols<2>(), rest.piece, -1.0), drape::InvalidInput);
+}
+
+TEST_CASE("self-contact rest filter of a welded seam compares pairs in each panel's own pattern",
+          "[cloth][self_contact]") {
+    // Two 5 x 5 cm panels, laid out 3 cm apart in the pattern, welded along A's right edge =
+    // B's left edge; in 3D B is folded back over A (a sharp fold at the seam, like a crotch
+    // seam pinched between the thighs), its layer 3-6 mm above A's. The seam vertices have
+    // one pattern point per panel. Pairs across the fold are near in 3D and far along the
+    // cloth: none of them may be left out as rest neighbours.
+    const int n = 5;
+    const double cell = 0.01, gap = 0.03;
+    const int side = n + 1;
+    Eigen::MatrixX2d pattern(2 * side * side, 2);
+    std::vector<int> point_vertex(size_t(2 * side * side)), point_piece(size_t(2 * side * side));
+    const int nv = side * side + n * side;  // B's left column is A's right column
+    Eigen::MatrixX3d x(nv, 3);
+    auto a_vertex = [&](int i, int j) { return j * side + i; };
+    auto b_vertex = [&](int i, int j) { return i == 0 ? a_vertex(n, j) : side * side + j * n + (i - 1); };
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const int qa = j * side + i, qb = side * side + j * side + i;
+            pattern.row(qa) << i * cell, j * cell;
+            pattern.row(qb) << n * cell + gap + i * cell, j * cell;
+            point_vertex[size_t(qa)] = a_vertex(i, j);
+            point_vertex[size_t(qb)] = b_vertex(i, j);
+            point_piece[size_t(qa)] = 0;
+            point_piece[size_t(qb)] = 1;
+            x.row(a_vertex(i, j)) << i * cell, j * cell, 0.0;
+            // B runs back over A from the seam, rising 0.6 mm per cm of cloth.
+            const double s = i * cell;
+            x.row(b_vertex(i, j)) << n * cell - s * std::cos(0.06), j * cell, s * std::sin(0.06);
+        }
+    Eigen::MatrixX3i faces(4 * n * n, 3), pattern_faces(4 * n * n, 3);
+    int f = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int qa = j * side + i, qb = side * side + j * side + i;
+            pattern_faces.row(f) << qa, qa + 1, qa + side + 1;
+            pattern_faces.row(f + 1) << qa, qa + side + 1, qa + side;
+            pattern_faces.row(f + 2) << qb, qb + 1, qb + side + 1;
+            pattern_faces.row(f + 3) << qb, qb + side + 1, qb + side;
+            for (int k = 0; k < 4; ++k)
+                for (int c = 0; c < 3; ++c) faces(f + k, c) = point_vertex[size_t(pattern_faces(f + k, c))];
+            f += 4;
+        }
+    const double min_distance = 0.008, radius = 0.008;
+    SelfContact sc(faces, nv);
+    sc.set_rest_filter(pattern, point_vertex, pattern_faces, point_piece, min_distance);
+    sc.find_candidates(x, radius);
+    // Reference: near at rest if some pattern point of the vertex lies on the face's panel
+    // within min_distance of its pattern triangle (edges: some pattern edge of each).
+    const auto& edges = sc.edges();
+    std::vector<std::vector<std::array<int, 3>>> pattern_edges_of(edges.size());  // (qa, qb, piece)
+    for (int g = 0; g < faces.rows(); ++g)
+        for (int c = 0; c < 3; ++c) {
+            const int a = faces(g, c), b = faces(g, (c + 1) % 3);
+            const std::array<int, 2> key = {std::min(a, b), std::max(a, b)};
+            const size_t e = size_t(std::lower_bound(edges.begin(), edges.end(), key) - edges.begin());
+            pattern_edges_of[e].push_back({pattern_faces(g, c), pattern_faces(g, (c + 1) % 3),
+                                           point_piece[size_t(pattern_faces(g, c))]});
+        }
+    const double r2 = min_distance * min_distance;
+    auto pat = [&](int q) { return Eigen::Vector3d(pattern(q, 0), pattern(q, 1), 0.0); };
+    const auto expected = brute_force_pairs_filtered(
+        sc, x, faces, radius, {},
+        [&](int v, int g) {
+            for (int q = 0; q < pattern.rows(); ++q)
+                if (point_vertex[size_t(q)] == v && point_piece[size_t(q)] == point_piece[size_t(pattern_faces(g, 0))] &&
+                    point_triangle_distance_squared(pat(q), pat(pattern_faces(g, 0)), pat(pattern_faces(g, 1)),
+                                                    pat(pattern_faces(g, 2))) < r2)
+                    return true;
+            return false;
+        },
+        [&](int e, int o) {
+            for (const auto& pa : pattern_edges_of[size_t(e)])
+                for (const auto& pb : pattern_edges_of[size_t(o)])
+                    if (pa[2] == pb[2] &&
+                        segment_segment_distance_squared(pat(pa[0]), pat(pa[1]), pat(pb[0]), pat(pb[1])) < r2)
+                        return true;
+            return false;
+        });
+    INFO(sc.candidates().size() << " found, " << expected.size() << " expected");
+    CHECK(same_pairs(sc.candidates(), expected));
+    // Pairs across the fold are found: A's vertex (3, 2), 2 cm from the seam, lies 1.2 mm
+    // under B's layer.
+    auto across_fold = [&](const std::vector<ContactPair>& pairs) {
+        int count = 0;
+        for (const ContactPair& pr : pairs)
+            if (pr.kind == Kind::vertex_triangle && pr.v[0] == a_vertex(3, 2) &&
+                std::min({pr.v[1], pr.v[2], pr.v[3]}) >= side * side)
+                ++count;
+        return count;
+    };
+    CHECK(across_fold(sc.candidates()) > 0);
+    // In-layer neighbours at the seam are not pairs: a seam vertex and a face of B that does
+    // not hold it but lies within min_distance of its point in B's pattern.
+    auto in_layer_at_seam = [&](const std::vector<ContactPair>& pairs) {
+        int count = 0;
+        for (const ContactPair& pr : pairs) {
+            if (pr.kind != Kind::vertex_triangle || pr.v[0] % side != n || pr.v[0] >= side * side) continue;
+            const Eigen::Vector3d q = pat(side * side + (pr.v[0] / side) * side);  // its point in B
+            for (int g = 0; g < faces.rows(); ++g)
+                if (faces(g, 0) == pr.v[1] && faces(g, 1) == pr.v[2] && faces(g, 2) == pr.v[3] &&
+                    point_piece[size_t(pattern_faces(g, 0))] == 1 &&
+                    point_triangle_distance_squared(q, pat(pattern_faces(g, 0)), pat(pattern_faces(g, 1)),
+                                                    pat(pattern_faces(g, 2))) < r2)
+                    ++count;
+        }
+        return count;
+    };
+    CHECK(in_layer_at_seam(sc.candidates()) == 0);
+    // With one pattern point per vertex (the first corner's: A's for the seam) and one piece
+    // for the welded cloth, as before 2026-11-24, the seam vertices are compared with B's
+    // faces in A's layout: B's faces beside the seam become contact pairs of the seam's own
+    // vertices, a repulsion within one layer at every seam (the walking pants crossed
+    // themselves at the crotch, where four panels meet).
+    Eigen::MatrixX2d first_corner(nv, 2);
+    for (int q = int(pattern.rows()) - 1; q >= 0; --q) first_corner.row(point_vertex[size_t(q)]) = pattern.row(q);
+    sc.set_rest_filter(first_corner, std::vector<int>(size_t(nv), 0), min_distance);
+    sc.find_candidates(x, radius);
+    CHECK(in_layer_at_seam(sc.candidates()) > 0);
+    // Bad input is named.
+    std::vector<int> wrong = point_vertex;
+    wrong[0] = 7;
+    CHECK_THROWS_AS(sc.set_rest_filter(pattern, wrong, pattern_faces, point_piece, min_distance), drape::InvalidInput);
+    CHECK_THROWS_AS(sc.set_rest_filter(pattern, point_vertex, pattern_faces, {0, 1}, min_distance), drape::InvalidInput);
 }
 
 TEST_CASE("self-contact candidates reused after the cloth moved give the fresh results",

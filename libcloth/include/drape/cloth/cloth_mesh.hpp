@@ -29,6 +29,7 @@ struct ClothMesh {
     /// \throw drape::InvalidInput naming the element if: a position or pattern coordinate
     ///        is not finite; shapes disagree; an index is out of range; a face repeats a
     ///        vertex; a pattern triangle has area <= 1e-12 m² or is clockwise (degenerate);
+    ///        a pattern point is a corner of two different vertices;
     ///        an edge has more than two faces (non-manifold); or two faces traverse a
     ///        shared edge in the same direction (inconsistent orientation).
     void validate() const;
