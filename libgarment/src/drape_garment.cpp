@@ -70,6 +70,11 @@ bool DrapeOptions::is_valid(std::string* why) const {
         return fail("DrapeOptions::fallback_steps = " + std::to_string(fallback_steps) + " must be >= 0");
     if (!(max_mean_drop_m > 0 && std::isfinite(max_mean_drop_m)))
         return fail("DrapeOptions::max_mean_drop_m = " + std::to_string(max_mean_drop_m) + " must be > 0");
+    if (!(waistband_width_cm >= 0 && std::isfinite(waistband_width_cm)))
+        return fail("DrapeOptions::waistband_width_cm = " + std::to_string(waistband_width_cm) + " must be >= 0");
+    if (!(waistband_stretching_factor >= 1 && std::isfinite(waistband_stretching_factor)))
+        return fail("DrapeOptions::waistband_stretching_factor = " + std::to_string(waistband_stretching_factor) +
+                    " must be >= 1");
     if (!(penetration_tolerance_m > 0))
         return fail("DrapeOptions::penetration_tolerance_m = " + std::to_string(penetration_tolerance_m) +
                     " must be > 0");
@@ -299,6 +304,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     // cloth is at rest (or `budget` runs out). Returns false when a step failed or the
     // caller cancelled (summary says which).
     bool settled = false;
+    Eigen::MatrixX3d progress_positions;
     auto run_steps = [&](int budget, int min_steps, DrapePhase phase) {
         settled = false;
         for (int k = 0; k < budget; ++k) {
@@ -323,8 +329,9 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
             const DrapePhase reported = in_motion ? DrapePhase::moving_body
                                         : closed && phase == DrapePhase::closing_seams ? DrapePhase::settling
                                                                                         : phase;
+            if (options.on_progress) progress_positions = garment_positions(sim.positions());
             if (options.on_progress && !options.on_progress({reported, summary.steps, s.max_stitch_gap_m, ke, s.newton_iterations,
-                                                         s.seconds_total})) {
+                                                         s.seconds_total, &progress_positions})) {
                 summary.termination = DrapeTermination::cancelled;
                 summary.message = "cancelled at step " + std::to_string(summary.steps);
                 return false;
@@ -351,7 +358,8 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
             ++summary.untangle_steps;
             if (options.on_progress &&
                 !options.on_progress({DrapePhase::closing_seams, summary.untangle_steps, s.max_stitch_gap_m,
-                                      kinetic_energy(untangle), s.newton_iterations, s.seconds_total})) {
+                                      kinetic_energy(untangle), s.newton_iterations, s.seconds_total,
+                                      &untangle.positions()})) {
                 summary.termination = DrapeTermination::cancelled;
                 summary.message = "cancelled while untangling";
                 summary.steps = summary.untangle_steps;
@@ -427,6 +435,63 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     return summary;
 }
 
+std::vector<int> waistband_faces(const Pattern& pattern, const GarmentMesh& mesh, double width_cm) {
+    require(width_cm >= 0 && std::isfinite(width_cm), "waistband_faces: width_cm = ", width_cm, " must be >= 0");
+    require(mesh.panel_of_vertex.size() == mesh.cloth.vertex_count() &&
+                mesh.panel_point_cm.rows() == mesh.cloth.vertex_count(),
+            "waistband_faces: the mesh's per-vertex panel data do not match its ", mesh.cloth.vertex_count(),
+            " vertices");
+    std::vector<int> out;
+    if (width_cm == 0) return out;
+    // Per panel the waist as a polyline (0.5 cm chords), or empty.
+    std::vector<std::vector<Eigen::Vector2d>> waist(pattern.panels.size());
+    for (size_t p = 0; p < pattern.panels.size(); ++p) {
+        const Panel& panel = pattern.panels[p];
+        const detail::Role role = detail::role_of(pattern, panel.name);
+        if (!((role == detail::Role::skirt && pattern.name == "circle_skirt") || role == detail::Role::leg)) continue;
+        int best = -1;
+        double best_y = -1e300;
+        for (size_t e = 0; e < panel.edges.size(); ++e) {
+            const bool sewn = std::any_of(pattern.seams.begin(), pattern.seams.end(), [&](const Seam& sm) {
+                return (sm.panel_a == int(p) && sm.edge_a == int(e)) || (sm.panel_b == int(p) && sm.edge_b == int(e));
+            });
+            if (sewn) continue;
+            double y = 0;
+            for (int k = 0; k <= 10; ++k) y += panel.edges[e].point_at_fraction(k / 10.0).y() / 11;
+            if (y > best_y) best_y = y, best = int(e);
+        }
+        if (best < 0) continue;
+        const Edge& edge = panel.edges[size_t(best)];
+        const int n = std::max(2, int(std::ceil(edge.length() / 0.5)));
+        for (int k = 0; k <= n; ++k) waist[p].push_back(edge.point_at_fraction(double(k) / n));
+    }
+    for (int f = 0; f < mesh.cloth.face_count(); ++f) {
+        const int panel = mesh.panel_of_vertex(mesh.cloth.faces(f, 0));
+        require(panel >= 0 && size_t(panel) < pattern.panels.size(), "waistband_faces: face ", f, " is on panel ",
+                panel, ", the pattern has ", pattern.panels.size());
+        const std::vector<Eigen::Vector2d>& line = waist[size_t(panel)];
+        if (line.empty()) continue;
+        Eigen::Vector2d c = Eigen::Vector2d::Zero();
+        for (int k = 0; k < 3; ++k) c += mesh.panel_point_cm.row(mesh.cloth.faces(f, k)).transpose() / 3;
+        double d2 = 1e300;
+        for (size_t k = 0; k + 1 < line.size(); ++k) {
+            const Eigen::Vector2d a = line[k], ab = line[k + 1] - a;
+            const double t = std::clamp((c - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+            d2 = std::min(d2, (a + t * ab - c).squaredNorm());
+        }
+        if (d2 <= width_cm * width_cm) out.push_back(f);
+    }
+    return out;
+}
+
+cloth::Material waistband_material(const cloth::Material& material, double stretching_factor) {
+    require(stretching_factor >= 1 && std::isfinite(stretching_factor), "waistband_material: stretching_factor = ",
+            stretching_factor, " must be >= 1");
+    cloth::Material band = material;
+    band.stretching_scale *= stretching_factor;
+    return band;
+}
+
 DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
                              const body::ShapedBody& shaped, const body::Pose& pose, const cloth::Material& material,
                              const DressingOptions& dressing_options, const DrapeOptions& options,
@@ -441,7 +506,14 @@ DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, co
     const std::vector<Eigen::MatrixX3d> path =
         at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
                 : pose_path(model, shaped, rest, pose, 11);
-    return drape_garment(mesh, X0, path, model.faces, material, options, out_positions);
+    require(options.is_valid(&why), "dress_and_drape: ", why);
+    require(material.is_valid(&why), "dress_and_drape: material: ", why);
+    // The waistband's faces are of the stiffened fabric (DrapeOptions::waistband_width_cm).
+    std::vector<int> face_material(size_t(mesh.cloth.face_count()), 0);
+    for (int f : waistband_faces(pattern, mesh, options.waistband_width_cm)) face_material[size_t(f)] = 1;
+    return drape_garment(mesh, X0, path, model.faces,
+                         {material, waistband_material(material, options.waistband_stretching_factor)}, face_material,
+                         options, out_positions);
 }
 
 namespace {
@@ -592,13 +664,22 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
     const std::vector<Eigen::MatrixX3d> path =
         at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
                 : pose_path(model, shaped, rest, pose, 11);
-    // Garment g's faces follow those of the garments before it (concatenate's order).
+    // Garment g's faces follow those of the garments before it (concatenate's order); its
+    // waistband's faces are of materials[n + g], its fabric stiffened.
+    require(options.is_valid(&why), "dress_and_drape_outfit: ", why);
+    const int n = int(meshes.size());
+    std::vector<cloth::Material> fabrics = materials;
+    for (const cloth::Material& m : materials) fabrics.push_back(waistband_material(m, options.waistband_stretching_factor));
     std::vector<int> face_material;
     face_material.reserve(size_t(all.cloth.face_count()));
-    for (size_t g = 0; g < meshes.size(); ++g)
-        face_material.insert(face_material.end(), size_t(meshes[g].cloth.face_count()), int(g));
+    for (int g = 0; g < n; ++g) {
+        const size_t f0 = face_material.size();
+        face_material.insert(face_material.end(), size_t(meshes[size_t(g)].cloth.face_count()), g);
+        for (int f : waistband_faces(patterns[size_t(g)], meshes[size_t(g)], options.waistband_width_cm))
+            face_material[f0 + size_t(f)] = n + g;
+    }
     Eigen::MatrixX3d X;
-    const DrapeSummary s = drape_garment(all, X0, path, model.faces, materials, face_material, options, X);
+    const DrapeSummary s = drape_garment(all, X0, path, model.faces, fabrics, face_material, options, X);
     out_positions.clear();
     for (size_t g = 0; g < meshes.size(); ++g) out_positions.push_back(X.middleRows(first[g], first[g + 1] - first[g]));
     return s;

@@ -4,6 +4,7 @@
 #include <drape/body/pose.hpp>
 #include <drape/body/shape_body.hpp>
 #include <drape/garment/circle_skirt.hpp>
+#include <drape/garment/dress.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/pants.hpp>
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <string>
 
 using namespace drape::garment;
@@ -361,4 +363,77 @@ TEST_CASE("drape: an outfit of two fabrics, gray-interlock pants and a rib-knit 
     CHECK_THROWS_WITH(drape_garment(o.meshes[0], o.meshes[0].cloth.positions, std::vector<Eigen::MatrixX3d>{body_V},
                                     o.f.model.faces, fabrics, out_of_range, DrapeOptions{}, Y),
                       Catch::Contains("face_material[5] = 2"));
+}
+
+TEST_CASE("drape: the waistband is the strip along the waist of skirts and pants only", "[garment][drape]") {
+    const MeanFemale f;
+    MeshOptions mo;
+    mo.target_edge_cm = 1.5;
+    for (const Pattern& pattern : {make_circle_skirt(propose_skirt_sizing(f.m)), make_pants(propose_pants_sizing(f.m))}) {
+        GarmentMesh mesh;
+        REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
+        const std::vector<int> band = waistband_faces(pattern, mesh, 3.0);
+        INFO(pattern.name << ": " << band.size() << " band faces of " << mesh.cloth.face_count());
+        // Every panel has a band, two rows of triangles deep at least; each band face lies
+        // within 3 cm (+ an edge) of an open (unstitched) boundary vertex of its panel, and
+        // far from the hem (the panel's lowest point in the pattern).
+        std::vector<bool> stitched(size_t(mesh.cloth.vertex_count()), false);
+        for (const auto& st : mesh.stitches) stitched[size_t(st[0])] = stitched[size_t(st[1])] = true;
+        std::vector<double> top(pattern.panels.size(), -1e300), bottom(pattern.panels.size(), 1e300);
+        for (int v = 0; v < mesh.cloth.vertex_count(); ++v) {
+            const size_t p = size_t(mesh.panel_of_vertex(v));
+            top[p] = std::max(top[p], mesh.panel_point_cm(v, 1));
+            bottom[p] = std::min(bottom[p], mesh.panel_point_cm(v, 1));
+        }
+        std::vector<int> per_panel(pattern.panels.size(), 0);
+        std::vector<double> lowest_band(pattern.panels.size(), 1e300);
+        double farthest_from_open_edge = 0;
+        for (int face : band) {
+            const size_t p = size_t(mesh.panel_of_vertex(mesh.cloth.faces(face, 0)));
+            ++per_panel[p];
+            Eigen::RowVector2d c = Eigen::RowVector2d::Zero();
+            for (int k = 0; k < 3; ++k) c += mesh.panel_point_cm.row(mesh.cloth.faces(face, k)) / 3;
+            lowest_band[p] = std::min(lowest_band[p], c.y());
+            double nearest = 1e300;
+            for (int v = 0; v < mesh.cloth.vertex_count(); ++v)
+                if (size_t(mesh.panel_of_vertex(v)) == p && mesh.boundary_edge(v) >= 0 && !stitched[size_t(v)])
+                    nearest = std::min(nearest, (mesh.panel_point_cm.row(v) - c).norm());
+            farthest_from_open_edge = std::max(farthest_from_open_edge, nearest);
+        }
+        CHECK(farthest_from_open_edge <= 3.0 + 1.5);
+        for (size_t p = 0; p < pattern.panels.size(); ++p) {
+            INFO(pattern.panels[p].name << ": " << per_panel[p] << " faces, down to " << top[p] - lowest_band[p]
+                                        << " cm below the top, panel " << top[p] - bottom[p] << " cm tall");
+            CHECK(per_panel[p] > 10);
+            CHECK(top[p] - lowest_band[p] >= 1.5);
+            CHECK(lowest_band[p] - bottom[p] >= 20.0);
+        }
+        CHECK(band.size() < size_t(mesh.cloth.face_count()) / 5);
+        CHECK(std::is_sorted(band.begin(), band.end()));
+        CHECK(waistband_faces(pattern, mesh, 0.0).empty());
+        CHECK(waistband_faces(pattern, mesh, 6.0).size() > band.size());
+        CHECK_THROWS_AS(waistband_faces(pattern, mesh, -1.0), drape::InvalidInput);
+    }
+    // A t-shirt has no waistband; a dress's skirt is sewn to its bodice at the top.
+    for (const Pattern& pattern : {make_tshirt(propose_tshirt_sizing(f.m)), make_dress(propose_dress_sizing(f.m))}) {
+        GarmentMesh mesh;
+        REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
+        CHECK(waistband_faces(pattern, mesh, 3.0).empty());
+    }
+    // The band's fabric: stretching stiffened, the rest unchanged; options validated.
+    const cloth::Material fabric = cloth::builtin_material("gray-interlock");
+    const cloth::Material band = waistband_material(fabric, 10);
+    CHECK(band.stretching_scale == Approx(10 * fabric.stretching_scale));
+    CHECK(band.bending_scale == fabric.bending_scale);
+    CHECK(band.density_kg_per_m2 == fabric.density_kg_per_m2);
+    CHECK_THROWS_AS(waistband_material(fabric, 0.5), drape::InvalidInput);
+    DrapeOptions options;
+    options.waistband_stretching_factor = 0.9;
+    std::string why;
+    CHECK_FALSE(options.is_valid(&why));
+    CHECK(why.find("waistband_stretching_factor") != std::string::npos);
+    options = DrapeOptions{};
+    options.waistband_width_cm = -1;
+    CHECK_FALSE(options.is_valid(&why));
+    CHECK(why.find("waistband_width_cm") != std::string::npos);
 }

@@ -19,6 +19,9 @@
 
 #include <catch2/catch.hpp>
 
+// The sewn surface (stitched partners as one vertex) is private to libgarment.
+#include "../../libgarment/src/dressing_internal.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -213,17 +216,7 @@ std::vector<std::pair<std::string, Pattern>> all_templates(const body::BodyMeasu
 // (DRAPE_DRESS_DETAIL).
 void print_crossings(const std::string& name, const Pattern& pattern, const GarmentMesh& mesh, const Eigen::MatrixX3d& X,
                      const Eigen::MatrixXd& body_V, const Eigen::MatrixXi& body_F) {
-    std::vector<int> rep(size_t(X.rows()));
-    for (size_t i = 0; i < rep.size(); ++i) rep[i] = int(i);
-    std::function<int(int)> find = [&](int i) { return rep[size_t(i)] == i ? i : rep[size_t(i)] = find(rep[size_t(i)]); };
-    // (The smallest vertex of a stitched group stands for it, as check_garment_state counts.)
-    for (const auto& st : mesh.stitches) {
-        const int a = find(st[0]), b = find(st[1]);
-        rep[size_t(std::max(a, b))] = std::min(a, b);
-    }
-    Eigen::MatrixX3i merged = mesh.cloth.faces;
-    for (Eigen::Index f = 0; f < merged.rows(); ++f)
-        for (int k = 0; k < 3; ++k) merged(f, k) = find(merged(f, k));
+    const Eigen::MatrixX3i merged = detail::sewn_faces(mesh);
     std::vector<std::pair<int, int>> pairs;
     drape::cloth::count_self_intersections(X, merged, &pairs);
     std::map<std::string, std::pair<int, double>> hist;
@@ -564,13 +557,12 @@ TEST_CASE("untangle: a skirt folded through itself is separated", "[garment][dre
     CHECK(c.max_penetration_m <= std::max(folded.max_penetration_m, 0.001));
 }
 
-// Hidden: OPEN (issue 4, docs/dressing.md). Sized from the navel girth + 4 cm ease
-// (propose_skirt_sizing(m)) this skirt fell 61-113 cm; his belly is wider than his hips.
-// Sized from the narrowest section above his pelvis + 1.5 cm it still falls (97-101 cm),
-// also when dressed at that height; with no ease it stays up (2 cm) but cuts 21 mm into
-// his belly. Run it with: drape_garment_tests "[open]".
+// Sized from the navel girth + 4 cm ease (propose_skirt_sizing(m)) this skirt fell 61-113
+// cm; his belly is wider than his hips. Sized from the narrowest section above his pelvis +
+// 1.5 cm it still fell (97-101 cm): the knit waist stretched 16 % over his hips. With the
+// waistband (DrapeOptions::waistband_width_cm, 2026-11-24) it stays up (3 cm).
 TEST_CASE("drape: the 95th-percentile man's skirt, sized where its waistband sits, stays up",
-          "[garment][drape][.open]") {
+          "[garment][drape]") {
     const ShapedAnsurBody b(kEvalBodies[4]);
     const double girth = skirt_waistband(b.model, b.shaped).girth_m;
     CHECK(girth < b.m.waist_girth_m);
@@ -585,10 +577,111 @@ TEST_CASE("drape: the 95th-percentile man's skirt, sized where its waistband sit
                                            DrapeOptions{}, X, &dressed);
     INFO(dressed.brief_report() << "; " << s.brief_report());
     CHECK(s.usable());
-    CHECK(s.mean_drop_m < 0.15);
+    CHECK(s.mean_drop_m < 0.06);
     const GarmentStateCheck c = check_garment_state(mesh, X, b.posed.vertices, b.model.faces);
     CHECK(c.self_intersections == 0);
     CHECK(c.max_penetration_m <= 0.001);
+}
+
+TEST_CASE("drape: the median woman's pants through a walking step stay free of crossings",
+          "[garment][drape]") {
+    // Case of the 60-case table (docs/dressing.md). Until the self-contact rest filter
+    // compared a welded seam's vertices in each panel's own pattern (2026-11-24), the pants
+    // crossed themselves at the back of the crotch during the step (4 pairs from step 170 on).
+    const drape::cloth::Material material = drape::cloth::builtin_material("gray-interlock");
+    const ShapedAnsurBody b(kEvalBodies[1]);  // female_p50
+    const body::BodyModel& model = b.model;
+    const body::ShapedBody& shaped = b.shaped;
+    const body::Pose pose = clear_arms_from_trunk(model, shaped, body::named_pose(body::NamedPose::walking));
+    const Pattern pattern = make_pants(propose_pants_sizing(b.m));
+    const GarmentMesh mesh = mesh_at_4cm(pattern);
+    const Eigen::MatrixX3i sewn = detail::sewn_faces(mesh);
+    int most_crossings = 0, checked = 0;
+    DrapeOptions options;
+    options.on_progress = [&](const DrapeProgress& p) {
+        if (p.step % 10 == 0 && p.positions) {
+            most_crossings = std::max(most_crossings, drape::cloth::count_self_intersections(*p.positions, sewn));
+            ++checked;
+        }
+        return true;
+    };
+    Eigen::MatrixX3d X;
+    DressingSummary dressed;
+    const DrapeSummary s = dress_and_drape(pattern, mesh, model, shaped, pose, material, DressingOptions{}, options, X, &dressed);
+    INFO(dressed.brief_report() << "; " << s.brief_report());
+    CHECK(s.usable());
+    CHECK(s.welded);
+    CHECK(checked > 15);
+    CHECK(most_crossings == 0);  // at every 10th step, not only at the end
+    const GarmentStateCheck c = check_garment_state(mesh, X, body::pose_body(model, shaped, pose).vertices, model.faces);
+    CHECK(c.self_intersections == 0);
+    CHECK(c.max_penetration_m <= 1e-3);
+}
+
+// Diagnostic (hidden): the crossings of a garment of the 60-case table over the drape,
+// every 5 steps, with where they are (panels, centre of the first face). DRAPE_DIAG_BODY
+// (female_p50), DRAPE_DIAG_GARMENT (pants|skirt|tshirt), DRAPE_DIAG_POSE
+// (walking|arms_down|a_pose).
+TEST_CASE("drape diag: crossings over the drape of one case of the 60-case table", "[.diag]") {
+    const drape::cloth::Material material = drape::cloth::builtin_material("gray-interlock");
+    const auto env = [](const char* k, const char* d) { const char* v = std::getenv(k); return std::string(v ? v : d); };
+    const std::string garment = env("DRAPE_DIAG_GARMENT", "pants"), pose_name = env("DRAPE_DIAG_POSE", "walking");
+    const std::string body_name = env("DRAPE_DIAG_BODY", "female_p50");
+    const EvalBody* eb = nullptr;
+    for (const EvalBody& e : kEvalBodies)
+        if (body_name == e.name) eb = &e;
+    REQUIRE(eb);
+    const ShapedAnsurBody b(*eb);
+    const body::BodyModel& model = b.model;
+    const body::ShapedBody& shaped = b.shaped;
+    const body::NamedPose np = pose_name == "walking" ? body::NamedPose::walking
+                               : pose_name == "arms_down" ? body::NamedPose::arms_down : body::NamedPose::a_pose;
+    const body::Pose pose = clear_arms_from_trunk(model, shaped, body::named_pose(np));
+    Pattern pattern;
+    if (garment == "pants") pattern = make_pants(propose_pants_sizing(b.m));
+    else if (garment == "skirt") pattern = make_circle_skirt(propose_skirt_sizing(b.m, skirt_waistband(model, shaped).girth_m));
+    else pattern = make_tshirt(propose_tshirt_sizing(b.m));
+    const GarmentMesh mesh = mesh_at_4cm(pattern);
+    const Eigen::MatrixX3i sewn = detail::sewn_faces(mesh);
+    DrapeOptions options;
+    options.on_progress = [&](const DrapeProgress& p) {
+        if (p.step % 5 != 0 || !p.positions) return true;
+        std::vector<std::pair<int, int>> pairs;
+        const int n = drape::cloth::count_self_intersections(*p.positions, sewn, &pairs);
+        // The top ring: boundary vertices within 2 cm of the highest at the first report,
+        // its mean height and its length taken in order of angle about the vertical.
+        static std::vector<int> ring;
+        if (ring.empty()) {
+            const double ymax = p.positions->col(1).maxCoeff();
+            for (int v = 0; v < p.positions->rows(); ++v)
+                if (mesh.boundary_edge(v) >= 0 && (*p.positions)(v, 1) > ymax - 0.02) ring.push_back(v);
+        }
+        Eigen::Vector3d c = Eigen::Vector3d::Zero();
+        for (int v : ring) c += p.positions->row(v).transpose() / double(ring.size());
+        std::vector<std::pair<double, int>> by_angle;
+        for (int v : ring) by_angle.push_back({std::atan2((*p.positions)(v, 2) - c.z(), (*p.positions)(v, 0) - c.x()), v});
+        std::sort(by_angle.begin(), by_angle.end());
+        double top_len = 0;
+        for (size_t k = 0; k < by_angle.size(); ++k)
+            top_len += (p.positions->row(by_angle[k].second) - p.positions->row(by_angle[(k + 1) % by_angle.size()].second)).norm();
+        const double top_y = c.y();
+        std::printf("step %d phase %d ke %.3g top loop y %.3f length %.3f crossings %d", p.step, int(p.phase),
+                    p.kinetic_energy_j, top_y, top_len, n);
+        for (size_t k = 0; k < std::min<size_t>(pairs.size(), 6); ++k) {
+            const int f = pairs[k].first, g = pairs[k].second;
+            const Eigen::RowVector3d cf = (p.positions->row(mesh.cloth.faces(f, 0)) + p.positions->row(mesh.cloth.faces(f, 1)) +
+                                           p.positions->row(mesh.cloth.faces(f, 2))) / 3;
+            std::printf(" [%s/%s at %.3f %.3f %.3f]", pattern.panels[size_t(mesh.panel_of_vertex(mesh.cloth.faces(f, 0)))].name.c_str(),
+                        pattern.panels[size_t(mesh.panel_of_vertex(mesh.cloth.faces(g, 0)))].name.c_str(), cf.x(), cf.y(), cf.z());
+        }
+        std::printf("\n");
+        std::fflush(stdout);
+        return true;
+    };
+    Eigen::MatrixX3d X;
+    DressingSummary dressed;
+    const DrapeSummary s = dress_and_drape(pattern, mesh, model, shaped, pose, material, DressingOptions{}, options, X, &dressed);
+    std::printf("%s\n%s\n", dressed.brief_report().c_str(), s.brief_report().c_str());
 }
 
 namespace {

@@ -27,6 +27,9 @@ struct DrapeProgress {
     double kinetic_energy_j = 0;     ///< ½ Σ m v² now
     int newton_iterations = 0;       ///< of the last step
     double step_seconds = 0;         ///< wall time of the last step
+    /// The garment's vertex positions now (#V x 3, world, metres; stitched vertices apart
+    /// until welded, then equal). Valid only during the callback.
+    const Eigen::MatrixX3d* positions = nullptr;
 };
 
 struct DrapeOptions {
@@ -77,6 +80,14 @@ struct DrapeOptions {
     /// cm, a loose skirt that settled from the waist onto the hips 15 cm; skirts that slid
     /// off to the floor 93 cm — and those pass every other check.
     double max_mean_drop_m = 0.25;
+    /// Skirts and pants are sewn with a waistband: the strip of their panels along the open
+    /// top edge (the waist) is stiffened as a doubled, interfaced band is, so that the waist
+    /// keeps its length under the garment's weight instead of stretching over the hips (the
+    /// 95th-percentile man's knit skirt stretched its waist 16 % and slid to the floor).
+    /// Used by dress_and_drape and dress_and_drape_outfit (they know the pattern; see
+    /// waistband_faces). Width 0 turns it off.
+    double waistband_width_cm = 3.0;         ///< strip width from the waist edge, >= 0
+    double waistband_stretching_factor = 10;  ///< band stretching stiffness / fabric's, >= 1
     /// Called after every step; return false to cancel. May be empty.
     std::function<bool(const DrapeProgress&)> on_progress;
 
@@ -138,6 +149,17 @@ struct DrapeSummary {
 /// its length the seam length the pair stands for (half the pattern lengths of the two
 /// boundary segments at vertex a).
 std::vector<cloth::Stitch> garment_stitches(const GarmentMesh& mesh);
+
+/// The faces of a garment's waistbands: on the panels of a skirt (circle_skirt) or pants,
+/// those whose pattern centroid lies within `width_cm` of the panel's waist, its open edge
+/// (in no seam) highest in the panel's pattern frame. A dress's skirt is sewn to the bodice
+/// at its top, so it has none; other patterns have none. Sorted face indices.
+/// \throw drape::InvalidInput if width_cm < 0 or not finite, or mesh is not of pattern.
+std::vector<int> waistband_faces(const Pattern& pattern, const GarmentMesh& mesh, double width_cm);
+
+/// `material` as a waistband of it (DrapeOptions::waistband_stretching_factor): the stretching
+/// scale multiplied by `stretching_factor` (>= 1).
+cloth::Material waistband_material(const cloth::Material& material, double stretching_factor);
 
 /// Sews and drapes `mesh` on a body: a cloth simulation from `initial_positions` (as
 /// dress_garment returns them) with the body as obstacle, the seams pulled closed, the
