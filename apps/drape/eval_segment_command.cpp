@@ -373,11 +373,13 @@ void add_eval_segment_command(CLI::App& app) {
                     "WrinkleOptions::scale_fractions, Hessian scales / body height (for tuning)");
     cmd->add_option("--resolution-ensemble", w.resolution_ensemble,
                     "WrinkleOptions::resolution_ensemble (for tuning)");
+    cmd->add_option("--phase-ensemble", w.phase_ensemble, "WrinkleOptions::phase_ensemble (for tuning)");
     const std::pair<const char*, double*> wrinkle_tuning[] = {
         {"ridge-threshold", &w.ridge_threshold},
         {"working-body-height", &w.working_body_height_px},
         {"min-edge-fraction", &w.min_edge_fraction},
-        {"full-fold-fraction", &w.full_fold_fraction}};
+        {"full-fold-fraction", &w.full_fold_fraction},
+        {"source-blur", &w.source_blur_px}};
     add_tuning_options(*cmd, "WrinkleOptions", wrinkle_tuning);
     cmd->callback([args] {
         std::string why;

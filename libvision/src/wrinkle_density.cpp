@@ -37,6 +37,9 @@ bool WrinkleOptions::is_valid(std::string* why) const {
     if (!(border_fraction >= 0)) return fail("border_fraction must be >= 0");
     if (!(full_fold_fraction >= 0)) return fail("full_fold_fraction must be >= 0");
     if (resolution_ensemble < 1) return fail("resolution_ensemble must be >= 1");
+    if (!(source_blur_px >= 0)) return fail("source_blur_px must be >= 0");
+    if (phase_ensemble != 1 && phase_ensemble != 2 && phase_ensemble != 4)
+        return fail("phase_ensemble must be 1, 2 or 4");
     return true;
 }
 
@@ -141,12 +144,15 @@ void fit_pieces(std::vector<Vec> pts, bool bright, double max_turn, double min_l
     out.push_back(std::move(e));
 }
 
-double angle_between(const Vec& d1, const Vec& d2) {
-    return std::acos(std::min(1.0, std::abs(d1.dot(d2))));  // undirected, radians
-}
+/// |cos| of the undirected angle between two unit directions: the angle exceeds a limit
+/// exactly when this falls below the limit's cosine (no acos in the inner loops).
+double abs_cos(const Vec& d1, const Vec& d2) { return std::min(1.0, std::abs(d1.dot(d2))); }
 
 /// Merges pieces of the same polarity with close ends and similar directions.
 void merge(std::vector<Edge>& edges, double gap, double max_angle, double max_turn) {
+    const double min_cos = std::cos(max_angle);
+    std::vector<Vec> dir(edges.size());
+    for (size_t i = 0; i < edges.size(); ++i) dir[i] = edges[i].direction();
     bool merged = true;
     while (merged) {
         merged = false;
@@ -156,7 +162,7 @@ void merge(std::vector<Edge>& edges, double gap, double max_angle, double max_tu
                 Edge& a = edges[i];
                 Edge& b = edges[k];
                 if (!b.alive || a.bright != b.bright) continue;
-                if (angle_between(a.direction(), b.direction()) > max_angle) continue;
+                if (abs_cos(dir[i], dir[k]) < min_cos) continue;
                 const Vec ea[2] = {a.start(), a.end()}, eb[2] = {b.start(), b.end()};
                 double best = 1e300;
                 Vec p = ea[0], q = eb[0];
@@ -164,14 +170,14 @@ void merge(std::vector<Edge>& edges, double gap, double max_angle, double max_tu
                     for (const auto& y : eb)
                         if ((x - y).norm() < best) { best = (x - y).norm(); p = x; q = y; }
                 if (best > gap) continue;
-                if (best > 1.0 && angle_between((q - p).normalized(), a.direction()) > max_angle)
-                    continue;
+                if (best > 1.0 && abs_cos((q - p).normalized(), dir[i]) < min_cos) continue;
                 Edge m;
                 m.bright = a.bright;
                 m.pts = a.pts;
                 m.pts.insert(m.pts.end(), b.pts.begin(), b.pts.end());
                 if (!fit(m) || 2 * std::abs(m.c) * m.length() > max_turn) continue;
                 a = std::move(m);
+                dir[i] = a.direction();
                 b.alive = false;
                 merged = true;
             }
@@ -215,8 +221,8 @@ GarmentCrop crop_garment(const cv::Mat& image, const cv::Mat& mask, const cv::Ma
 }
 
 /// One detection with the body resampled to Hw px: sets the edge and fold counts of `s`.
-void detect_at(const GarmentCrop& crop, double H, double Hw, const WrinkleOptions& o, WrinkleSummary& s,
-               std::vector<Fold>* folds) {
+void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, const WrinkleOptions& o,
+               WrinkleSummary& s, std::vector<Fold>* folds) {
     // The crop is resampled so that the body is Hw px tall: every filter then sees the
     // same pixel scale whatever the photo's resolution (discrete derivatives bias small
     // sigmas).
@@ -226,6 +232,10 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const WrinkleOption
                              std::max(3, int(std::lround(roi.height * f))));
     cv::Mat gray;
     cv::resize(crop.gray, gray, work_size, 0, 0, f < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+    if (phase.squaredNorm() > 0) {
+        const cv::Matx23d shift(1, 0, phase.x(), 0, 1, phase.y());
+        cv::warpAffine(gray, gray, shift, gray.size(), cv::INTER_CUBIC, cv::BORDER_REPLICATE);
+    }
     cv::Mat mask_w, occ_w;
     cv::resize(crop.mask, mask_w, work_size, 0, 0, cv::INTER_NEAREST);
     if (!crop.occlusion.empty()) cv::resize(crop.occlusion, occ_w, work_size, 0, 0, cv::INTER_NEAREST);
@@ -236,8 +246,13 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const WrinkleOption
             ny_d = nx_b.clone();
     for (double sf : o.scale_fractions) {
         const double sigma = std::max(0.7, sf * Hw);
+        // The photo's own blur, in working pixels, is part of sigma: a photo with the body
+        // 250 px tall is upsampled twice as much as one with 500 px and carries twice the
+        // blur, so adding the full sigma on top made its folds look coarser and weaker.
+        const double sigma_src = o.source_blur_px * f;
+        const double sigma_add = std::sqrt(std::max(0.49, sigma * sigma - sigma_src * sigma_src));
         cv::Mat g, dxx, dyy, dxy;
-        cv::GaussianBlur(gray, g, cv::Size(), sigma, sigma, cv::BORDER_REPLICATE);
+        cv::GaussianBlur(gray, g, cv::Size(), sigma_add, sigma_add, cv::BORDER_REPLICATE);
         cv::Sobel(g, dxx, CV_32F, 2, 0, 3);
         cv::Sobel(g, dyy, CV_32F, 0, 2, 3);
         cv::Sobel(g, dxy, CV_32F, 1, 1, 3);
@@ -333,13 +348,14 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const WrinkleOption
     // Pair bright ridges with dark valleys running beside them; best overlaps first.
     struct Candidate { size_t r, v; double score; };
     std::vector<Candidate> cands;
+    const double pair_min_cos = std::cos(o.pair_angle_deg * rad);
     for (size_t i = 0; i < edges.size(); ++i) {
         if (!edges[i].bright) continue;
         for (size_t k = 0; k < edges.size(); ++k) {
             if (edges[k].bright) continue;
             const Edge& r = edges[i];
             const Edge& v = edges[k];
-            if (angle_between(r.direction(), v.direction()) > o.pair_angle_deg * rad) continue;
+            if (abs_cos(r.direction(), v.direction()) < pair_min_cos) continue;
             const Vec d = r.direction();
             const Vec rs = r.start(), re = r.end();
             double a0 = 0, a1 = (re - rs).dot(d);
@@ -405,23 +421,28 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
     // working_body_height_px (resolution_ensemble of them, ±15 % geometric): one detection
     // is a threshold-laden function of the sampling grid (hysteresis, thinning, splitting,
     // merging, pairing), so a fold near a threshold comes and goes when the photo is
-    // resampled; averaging over grids measures P, not one grid's luck.
+    // resampled; averaging over grids measures P, not one grid's luck. Each resolution also
+    // runs on phase_ensemble sub-pixel shifts of its grid: the same sampling noise at a
+    // fixed scale, which a spread of scales alone leaves partly correlated.
     const int n = o.resolution_ensemble;
     const GarmentCrop crop = crop_garment(image, mask, occlusion, H, o);
+    const Vec phases[4] = {{0, 0}, {0.5, 0.5}, {0.5, 0}, {0, 0.5}};
     double count_sum = 0;
-    for (int k = 0; k < n; ++k) {
-        const double t = n > 1 ? 2.0 * k / (n - 1) - 1.0 : 0.0;
-        WrinkleSummary sk;
-        const bool nominal = k == n / 2;  // the middle one (t = 0 when n is odd)
-        detect_at(crop, H, o.working_body_height_px * std::pow(1.15, t), o, sk, nominal ? folds : nullptr);
-        count_sum += sk.fold_count;
-        if (nominal) {
-            s.edges_detected = sk.edges_detected;
-            s.edges_merged = sk.edges_merged;
-            s.folds = sk.folds;
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < o.phase_ensemble; ++j) {
+            const double t = n > 1 ? 2.0 * k / (n - 1) - 1.0 : 0.0;
+            WrinkleSummary sk;
+            const bool nominal = k == n / 2 && j == 0;  // the middle one (t = 0 when n is odd)
+            detect_at(crop, H, o.working_body_height_px * std::pow(1.15, t), phases[j], o, sk,
+                      nominal ? folds : nullptr);
+            count_sum += sk.fold_count;
+            if (nominal) {
+                s.edges_detected = sk.edges_detected;
+                s.edges_merged = sk.edges_merged;
+                s.folds = sk.folds;
+            }
         }
-    }
-    s.fold_count = count_sum / n;
+    s.fold_count = count_sum / (n * o.phase_ensemble);
     s.density_per_m2 = s.garment_area_m2 > 0 ? s.fold_count / s.garment_area_m2 : 0.0;
     s.termination = WrinkleTermination::ok;
     return done();

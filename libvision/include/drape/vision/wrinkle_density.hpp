@@ -44,6 +44,16 @@ struct WrinkleOptions {
     /// over working_body_height_px x 1.15^[-1, 1] (1 = a single detection). One detection
     /// depends on the sampling grid through its thresholds; the mean does much less.
     int resolution_ensemble = 5;  ///< >= 1
+    /// The photo's own blur, a Gaussian sigma in the photo's pixels (optics, demosaicing,
+    /// JPEG, resampling). A Hessian scale sigma (working pixels) is reached by blurring the
+    /// resampled garment by sqrt(sigma^2 - (source_blur_px x working/photo scale)^2) only,
+    /// so that the filters see the garment at the same total blur whatever the photo's
+    /// resolution (a small photo, upsampled more, already carries more of it). 0 = off.
+    double source_blur_px = 0.3;  ///< >= 0
+    /// Detections per working resolution, each on the working grid shifted by a different
+    /// sub-pixel offset (1: none; 2: also shifted by half a pixel in x and y; 4: all four
+    /// half-pixel shifts). P is the mean over resolution_ensemble x phase_ensemble runs.
+    int phase_ensemble = 2;  ///< 1, 2 or 4
 
     bool is_valid(std::string* why = nullptr) const;
 };
