@@ -122,8 +122,16 @@ GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& me
 
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
                               const body::BodyMeasurements& measured) {
-    if (type != GarmentType::skirt) return proposed_sizing(type, measured);
-    return proposed_sizing(type, measured, garment::skirt_waistband(model, shaped).girth_m);
+    if (type == GarmentType::skirt) return proposed_sizing(type, measured, garment::skirt_waistband(model, shaped).girth_m);
+    return fit_top_to_body(proposed_sizing(type, measured), model, shaped);
+}
+
+GarmentSizing fit_top_to_body(GarmentSizing g, const body::BodyModel& model, const body::ShapedBody& shaped) {
+    if (g.type != GarmentType::tshirt && g.type != GarmentType::dress) return g;
+    garment::TShirtSizing& top = g.type == GarmentType::tshirt ? g.tshirt : g.dress.bodice;
+    if (top.l1 > 0) top = garment::fit_sleeves(top, garment::upper_arm_girth(model, shaped, top.l1));
+    top = garment::fit_neckline(top, garment::neck_girth(model, shaped));
+    return g;
 }
 
 void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,

@@ -46,9 +46,14 @@ GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& me
 /// plus the skirt waist ease.
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured,
                               double skirt_waistband_girth_m);
-/// The same with the waistband girth measured on `shaped`.
+/// The same with the waistband girth measured on `shaped` and a top fitted to its arms and
+/// neck (fit_top_to_body).
 GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
                               const body::BodyMeasurements& measured);
+/// `g` (a t-shirt or a dress; others unchanged) with the sleeve opening widened to the arm of
+/// `shaped` + the sleeve ease and the neckline to its neck + the neckline ease, where
+/// narrower (garment::upper_arm_girth / fit_sleeves, garment::neck_girth / fit_neckline).
+GarmentSizing fit_top_to_body(GarmentSizing g, const body::BodyModel& model, const body::ShapedBody& shaped);
 
 /// A garment mesh as OBJ: `v` = positions (#V x 3, metres: the draped garment, or the flat
 /// layout (u, v, 0)), `vt` = pattern uv, one group per panel; `what` goes in the header.

@@ -342,7 +342,9 @@ SynthScene sample_synth_scene(const SynthOptions& options) {
     const double waistband_girth_m = has_skirt ? garment::skirt_waistband(model, s.shaped).girth_m : 0.0;
     for (GarmentType t : types) {
         SynthGarment g;
-        g.sizing = sample_sizing(sizing_rng, t, shaping.measured, waistband_girth_m);
+        // Sleeves and neckline at least the arm's and neck's girth + ease (stature ratios
+        // alone made them too small for heavy bodies).
+        g.sizing = fit_top_to_body(sample_sizing(sizing_rng, t, shaping.measured, waistband_girth_m), model, s.shaped);
         g.base_fabric = options.material == "random" ? fabrics[material_rng.index(fabrics.size())] : options.material;
         g.material = cloth::builtin_material(g.base_fabric);
         const double log_scale = material_rng.uniform(0.0, 2.0);  // drawn always: streams stay aligned
@@ -432,6 +434,28 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
                : garment::dress_and_drape_outfit(patterns, meshes, model, shaped, scene.pose, materials,
                                                  garment::DressingOptions{}, drape_options, draped, &dressed);
     const double drape_seconds = seconds_since(t0);
+    // Where each garment is deepest inside the body (for the summary: which panel, where,
+    // and the body joint that mainly moves the face it is under).
+    const cloth::Obstacle body_obstacle(body_V, body_F);
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> skin = model.skin_weights;
+    const auto deepest_inside = [&](std::size_t i) {
+        nlohmann::json out = nullptr;
+        double depth = 0;
+        for (Eigen::Index v = 0; v < draped[i].rows(); ++v) {
+            const cloth::ObstacleQuery q = body_obstacle.closest(draped[i].row(v).transpose(), 0.1);
+            if (!q.found || -q.signed_distance_m <= depth) continue;
+            depth = -q.signed_distance_m;
+            int joint = 0;
+            double best = -1;
+            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(skin, body_F(q.face, 0)); it; ++it)
+                if (it.value() > best) best = it.value(), joint = int(it.col());
+            out = {{"panel", patterns[i].panels[size_t(meshes[i].panel_of_vertex(v))].name},
+                   {"position_m", {draped[i](v, 0), draped[i](v, 1), draped[i](v, 2)}},
+                   {"depth_m", depth},
+                   {"body_joint", std::string(body::kJointNames[size_t(joint)])}};
+        }
+        return out;
+    };
     std::vector<double> mean_curvature(n);
     for (std::size_t i = 0; i < n; ++i) {
         const std::vector<cloth::Hinge> hinges = cloth::build_hinges(meshes[i].cloth);
@@ -455,6 +479,7 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
                                    {"seam_gap_max_m", d.seam_gap_max_m},
                                    {"penetration_max_m", d.penetration_max_m},
                                    {"vertices_inside", d.vertices_inside},
+                                   {"deepest_inside", deepest_inside(i)},
                                    {"self_intersections", d.self_intersections},
                                    {"initial_self_intersections", d.initial_self_intersections},
                                    {"mean_drop_m", d.mean_drop_m},

@@ -448,18 +448,8 @@ std::vector<int> waistband_faces(const Pattern& pattern, const GarmentMesh& mesh
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
         const detail::Role role = detail::role_of(pattern, panel.name);
-        if (!((role == detail::Role::skirt && pattern.name == "circle_skirt") || role == detail::Role::leg)) continue;
-        int best = -1;
-        double best_y = -1e300;
-        for (size_t e = 0; e < panel.edges.size(); ++e) {
-            const bool sewn = std::any_of(pattern.seams.begin(), pattern.seams.end(), [&](const Seam& sm) {
-                return (sm.panel_a == int(p) && sm.edge_a == int(e)) || (sm.panel_b == int(p) && sm.edge_b == int(e));
-            });
-            if (sewn) continue;
-            double y = 0;
-            for (int k = 0; k <= 10; ++k) y += panel.edges[e].point_at_fraction(k / 10.0).y() / 11;
-            if (y > best_y) best_y = y, best = int(e);
-        }
+        if (!(role == detail::Role::skirt && pattern.name == "circle_skirt")) continue;
+        const int best = detail::waist_edge(pattern, p);
         if (best < 0) continue;
         const Edge& edge = panel.edges[size_t(best)];
         const int n = std::max(2, int(std::ceil(edge.length() / 0.5)));

@@ -4,6 +4,8 @@
 
 #include "dressing_internal.hpp"
 
+#include <drape/body/measurements.hpp>
+
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
@@ -583,6 +585,7 @@ std::string DressingSummary::brief_report() const {
        << 1000 * max_penetration_m << " mm, min layer distance " << 1000 * min_layer_distance_m
        << " mm, alignment rms "
        << alignment_rms_m << " m, " << seconds << " s";
+    if (skirt_waist_drop_m != 0) os << ", skirt waist " << 100 * skirt_waist_drop_m << " cm below the spine joint";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
 }
@@ -700,8 +703,33 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         for (int d = -3; d <= 3; ++d) sum += raw_section(std::clamp(k + d, 0, nbins - 1));
         return Eigen::Vector2d(sum / 7.0);
     };
+    // A circle skirt's waist goes where it fits: the highest body section between the spine
+    // joint and the narrowest section below it (towards the pelvis joint) whose girth is at
+    // most the skirt's waist. Dressed at the spine joint, a skirt sized at the narrowest
+    // section + ease (skirt_waistband) started stretched over a belly wider than it, and its
+    // waistband then cut into it (docs/dressing.md).
+    double skirt_waist_y = std::numeric_limits<double>::quiet_NaN();
+    if (pattern.name == "circle_skirt") {
+        double waist_cm = 0;
+        for (size_t p = 0; p < pattern.panels.size(); ++p)
+            if (const int e = detail::waist_edge(pattern, p); e >= 0) waist_cm += pattern.panels[p].edges[size_t(e)].length();
+        const Eigen::Vector3d spine = rest.row(index(Joint::spine)).transpose();
+        const Eigen::Vector3d pelvis = rest.row(index(Joint::pelvis)).transpose();
+        const int steps = std::max(1, int(std::ceil((spine.y() - pelvis.y()) / 0.01)));
+        double narrowest = 1e300, narrowest_y = spine.y(), fits_y = std::numeric_limits<double>::quiet_NaN();
+        for (int k = 0; k <= steps && std::isnan(fits_y); ++k) {
+            const Eigen::Vector3d c = spine + (pelvis - spine) * double(k) / steps;
+            const double g = body::section_girth(shaped.vertices, model.faces, c, Eigen::Vector3d::UnitY());
+            if (g <= 0) continue;
+            if (g <= 0.01 * waist_cm) fits_y = c.y();
+            if (g < narrowest) narrowest = g, narrowest_y = c.y();
+        }
+        skirt_waist_y = (std::isnan(fits_y) ? narrowest_y : fits_y) - root.y();
+        summary.skirt_waist_drop_m = spine.y() - (skirt_waist_y + root.y());
+    }
     Eigen::VectorXd pelvis_weight;
-    Eigen::MatrixX3d X = detail::wrap_panels(pattern, mesh, garment_joints, torso_section, &pelvis_weight);
+    Eigen::MatrixX3d X = detail::wrap_panels(pattern, mesh, garment_joints, torso_section, &pelvis_weight, nullptr,
+                                             kSleeveOffsetM, skirt_waist_y);
     X = (T * X.transpose()).transpose();
 
     // 2. Linear blend skinning with the weights of the nearest rest body vertex.

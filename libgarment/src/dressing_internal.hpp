@@ -10,6 +10,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,14 @@ using Joints = Eigen::Matrix<double, body::kJointCount, 3>;
 Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, const Joints& joints,
                              const std::function<Eigen::Vector2d(double)>& torso_section,
                              Eigen::VectorXd* pelvis_weight = nullptr, const Eigen::MatrixX3d* base = nullptr,
-                             double sleeve_offset_m = 0.04);
+                             double sleeve_offset_m = 0.04,
+                             double skirt_waist_y = std::numeric_limits<double>::quiet_NaN());
+// (skirt_waist_y: garment-frame height at which a circle skirt's waist is placed; NaN: the
+// spine joint's.)
+
+/// The waist of a skirt or pants panel: its open edge (in no seam) whose points lie highest
+/// in the panel's pattern frame, or -1 (no open edge).
+int waist_edge(const Pattern& pattern, size_t panel);
 
 /// How a panel of a built-in template is placed (hint: other patterns).
 enum class Role { torso, sleeve, skirt, leg, hint };

@@ -229,9 +229,26 @@ double soft_floor(double d, double soft) {
     return d >= soft ? d : soft * std::exp((d - soft) / soft);
 }
 
+int waist_edge(const Pattern& pattern, size_t panel) {
+    const Panel& pn = pattern.panels[panel];
+    int best = -1;
+    double best_y = -1e300;
+    for (size_t e = 0; e < pn.edges.size(); ++e) {
+        const bool sewn = std::any_of(pattern.seams.begin(), pattern.seams.end(), [&](const Seam& sm) {
+            return (sm.panel_a == int(panel) && sm.edge_a == int(e)) || (sm.panel_b == int(panel) && sm.edge_b == int(e));
+        });
+        if (sewn) continue;
+        double y = 0;
+        for (int k = 0; k <= 10; ++k) y += pn.edges[e].point_at_fraction(k / 10.0).y() / 11;
+        if (y > best_y) best_y = y, best = int(e);
+    }
+    return best;
+}
+
 Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, const Joints& J,
                              const std::function<Eigen::Vector2d(double)>& torso_section,
-                             Eigen::VectorXd* pelvis_weight, const Eigen::MatrixX3d* base, double sleeve_offset_m) {
+                             Eigen::VectorXd* pelvis_weight, const Eigen::MatrixX3d* base, double sleeve_offset_m,
+                             double skirt_waist_y) {
     const int nv = mesh.cloth.vertex_count();
     Eigen::MatrixX3d out(nv, 3);
     if (base) out = *base;
@@ -239,7 +256,8 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
     const double neck_y = J(index(Joint::neck), 1), waist_y = J(index(Joint::spine), 1);
     // Heights at which the templates hang: tops from the neck, skirts and pants from the waist
     // (a dress's skirt from the bodice hem).
-    double skirt_top_y = waist_y, pants_waist_cm = 0, pants_inseam_cm = 0, torso_half_width_cm = 0;
+    double skirt_top_y = std::isnan(skirt_waist_y) ? waist_y : skirt_waist_y, pants_waist_cm = 0, pants_inseam_cm = 0,
+           torso_half_width_cm = 0;
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
         if (pattern.name == "dress" && panel.name == "bodice_front")

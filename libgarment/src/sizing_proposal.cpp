@@ -82,6 +82,64 @@ SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedB
     return band;
 }
 
+double upper_arm_girth(const body::BodyModel& model, const body::ShapedBody& shaped, double sleeve_length_cm) {
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
+            "upper_arm_girth: the shaped body does not fit the model");
+    require(std::isfinite(sleeve_length_cm) && sleeve_length_cm > 0, "upper_arm_girth: sleeve length ",
+            sleeve_length_cm, " cm must be positive");
+    const Eigen::Vector3d shoulder = shaped.joints.row(body::index(body::Joint::right_shoulder)).transpose();
+    const Eigen::Vector3d elbow = shaped.joints.row(body::index(body::Joint::right_elbow)).transpose();
+    const Eigen::Vector3d axis = elbow - shoulder;
+    const double length = axis.norm();
+    require(length > 0, "upper_arm_girth: the shoulder and elbow joints coincide");
+    const double t_end = std::clamp(0.01 * sleeve_length_cm / length, 0.35, 0.95);
+    double girth = 0;
+    for (double t = 0.35; t <= t_end + 1e-9; t += 0.05)
+        girth = std::max(girth, body::section_girth(shaped.vertices, model.faces, shoulder + t * axis, axis));
+    require(girth > 0, "upper_arm_girth: no section of the right upper arm");
+    return girth;
+}
+
+namespace {
+// Throws unless the girth is positive and the ease in [0, 60] cm (`what` names the caller).
+void check_girth_and_ease(const char* what, double girth_m, double ease_cm) {
+    require(std::isfinite(girth_m) && girth_m > 0, what, ": girth ", girth_m, " m must be positive");
+    require(std::isfinite(ease_cm) && ease_cm >= 0 && ease_cm <= 60, what, ": ease ", ease_cm,
+            " cm must be in [0, 60]");
+}
+}  // namespace
+
+TShirtSizing fit_sleeves(TShirtSizing g, double arm_girth_m, double ease_cm) {
+    check_girth_and_ease("fit_sleeves", arm_girth_m, ease_cm);
+    if (g.l1 > 0) g.w1 = std::max(g.w1, cm(arm_girth_m) + ease_cm);
+    return g;
+}
+
+double neck_girth(const body::BodyModel& model, const body::ShapedBody& shaped) {
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
+            "neck_girth: the shaped body does not fit the model");
+    const Eigen::Vector3d neck = shaped.joints.row(body::index(body::Joint::neck)).transpose();
+    const Eigen::Vector3d head = shaped.joints.row(body::index(body::Joint::head)).transpose();
+    require((head - neck).norm() > 0, "neck_girth: the neck and head joints coincide");
+    const double g = body::section_girth(shaped.vertices, model.faces, neck + 0.3 * (head - neck), head - neck);
+    require(g > 0, "neck_girth: no section of the neck");
+    return g;
+}
+
+TShirtSizing fit_neckline(TShirtSizing g, double neck_girth_m, double ease_cm) {
+    check_girth_and_ease("fit_neckline", neck_girth_m, ease_cm);
+    // The neckline's arcs scale with r (their depths are fixed fractions of it).
+    const Pattern p = make_tshirt(g);
+    const double neckline = p.panels[0].edges[4].length() + p.panels[1].edges[4].length();
+    const double wanted = cm(neck_girth_m) + ease_cm;
+    if (neckline >= wanted) return g;
+    double r_max = 0.5 * (g.w2 - 10.0);
+    for (const auto& spec : TShirtSizing::parameters())
+        if (std::string(spec.name) == "r") r_max = std::min(r_max, spec.max);
+    g.r = std::max(g.r, std::min(r_max, g.r * wanted / neckline));
+    return g;
+}
+
 SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, double waistband_girth_m, double ease_cm) {
     Ease ease;
     ease.waist_cm = ease_cm;

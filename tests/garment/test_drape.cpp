@@ -365,11 +365,11 @@ TEST_CASE("drape: an outfit of two fabrics, gray-interlock pants and a rib-knit 
                       Catch::Contains("face_material[5] = 2"));
 }
 
-TEST_CASE("drape: the waistband is the strip along the waist of skirts and pants only", "[garment][drape]") {
+TEST_CASE("drape: the waistband is the strip along a skirt's waist", "[garment][drape]") {
     const MeanFemale f;
     MeshOptions mo;
     mo.target_edge_cm = 1.5;
-    for (const Pattern& pattern : {make_circle_skirt(propose_skirt_sizing(f.m)), make_pants(propose_pants_sizing(f.m))}) {
+    for (const Pattern& pattern : {make_circle_skirt(propose_skirt_sizing(f.m))}) {
         GarmentMesh mesh;
         REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
         const std::vector<int> band = waistband_faces(pattern, mesh, 3.0);
@@ -414,16 +414,26 @@ TEST_CASE("drape: the waistband is the strip along the waist of skirts and pants
         CHECK(waistband_faces(pattern, mesh, 6.0).size() > band.size());
         CHECK_THROWS_AS(waistband_faces(pattern, mesh, -1.0), drape::InvalidInput);
     }
-    // A t-shirt has no waistband; a dress's skirt is sewn to its bodice at the top.
-    for (const Pattern& pattern : {make_tshirt(propose_tshirt_sizing(f.m)), make_dress(propose_dress_sizing(f.m))}) {
+    // The mean woman's skirt (navel girth + 4 cm) fits at her spine joint: dressed there.
+    {
+        const Pattern skirt = make_circle_skirt(propose_skirt_sizing(f.m));
+        GarmentMesh mesh;
+        REQUIRE(mesh_pattern(skirt, mo, mesh).usable());
+        Eigen::MatrixX3d X;
+        const DressingSummary d = dress_garment(skirt, mesh, f.model, f.shaped, body::Pose::rest(), DressingOptions{}, X);
+        CHECK(d.skirt_waist_drop_m == 0.0);
+    }
+    // Pants and a t-shirt have no waistband; a dress's skirt is sewn to its bodice at the top.
+    for (const Pattern& pattern : {make_pants(propose_pants_sizing(f.m)), make_tshirt(propose_tshirt_sizing(f.m)),
+                                   make_dress(propose_dress_sizing(f.m))}) {
         GarmentMesh mesh;
         REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
         CHECK(waistband_faces(pattern, mesh, 3.0).empty());
     }
     // The band's fabric: stretching stiffened, the rest unchanged; options validated.
     const cloth::Material fabric = cloth::builtin_material("gray-interlock");
-    const cloth::Material band = waistband_material(fabric, 10);
-    CHECK(band.stretching_scale == Approx(10 * fabric.stretching_scale));
+    const cloth::Material band = waistband_material(fabric, 4);
+    CHECK(band.stretching_scale == Approx(4 * fabric.stretching_scale));
     CHECK(band.bending_scale == fabric.bending_scale);
     CHECK(band.density_kg_per_m2 == fabric.density_kg_per_m2);
     CHECK_THROWS_AS(waistband_material(fabric, 0.5), drape::InvalidInput);

@@ -80,14 +80,15 @@ struct DrapeOptions {
     /// cm, a loose skirt that settled from the waist onto the hips 15 cm; skirts that slid
     /// off to the floor 93 cm — and those pass every other check.
     double max_mean_drop_m = 0.25;
-    /// Skirts and pants are sewn with a waistband: the strip of their panels along the open
-    /// top edge (the waist) is stiffened as a doubled, interfaced band is, so that the waist
-    /// keeps its length under the garment's weight instead of stretching over the hips (the
+    /// Skirts are sewn with a waistband: the strip of their panels along the open top edge
+    /// (the waist) is stiffened as a doubled, interfaced band is, so that the waist keeps its
+    /// length under the skirt's weight instead of stretching over the hips (the
     /// 95th-percentile man's knit skirt stretched its waist 16 % and slid to the floor).
-    /// Used by dress_and_drape and dress_and_drape_outfit (they know the pattern; see
+    /// Pants hang from the crotch and keep their waist as cut (docs/dressing.md). Used by
+    /// dress_and_drape and dress_and_drape_outfit (they know the pattern; see
     /// waistband_faces). Width 0 turns it off.
     double waistband_width_cm = 3.0;         ///< strip width from the waist edge, >= 0
-    double waistband_stretching_factor = 10;  ///< band stretching stiffness / fabric's, >= 1
+    double waistband_stretching_factor = 4;  ///< band stretching stiffness / fabric's, >= 1
     /// Called after every step; return false to cancel. May be empty.
     std::function<bool(const DrapeProgress&)> on_progress;
 
@@ -150,10 +151,10 @@ struct DrapeSummary {
 /// boundary segments at vertex a).
 std::vector<cloth::Stitch> garment_stitches(const GarmentMesh& mesh);
 
-/// The faces of a garment's waistbands: on the panels of a skirt (circle_skirt) or pants,
-/// those whose pattern centroid lies within `width_cm` of the panel's waist, its open edge
-/// (in no seam) highest in the panel's pattern frame. A dress's skirt is sewn to the bodice
-/// at its top, so it has none; other patterns have none. Sorted face indices.
+/// The faces of a skirt's waistband: on the panels of a circle skirt, those whose pattern
+/// centroid lies within `width_cm` of the panel's waist, its open edge (in no seam) highest
+/// in the panel's pattern frame. A dress's skirt is sewn to the bodice at its top, so it has
+/// none; other patterns (pants, tops) have none. Sorted face indices.
 /// \throw drape::InvalidInput if width_cm < 0 or not finite, or mesh is not of pattern.
 std::vector<int> waistband_faces(const Pattern& pattern, const GarmentMesh& mesh, double width_cm);
 

@@ -40,6 +40,10 @@ struct DressingSummary {
     DressingTermination termination = DressingTermination::converged;
     std::string message;
     double alignment_rms_m = 0;   ///< RMS of ||T q_i - t_i|| over the garment joints
+    /// A circle skirt's waist is placed where it fits (the highest trunk section from the
+    /// spine joint down whose girth is at most the skirt's waist, else the narrowest): how far
+    /// below the spine joint (m; 0 for other garments).
+    double skirt_waist_drop_m = 0;
     int iterations = 0;           ///< push-out rounds used
     int vertices_pushed = 0;      ///< vertices that were inside or too close at some round
     int vertices_inside = 0;      ///< after registration (inside test on the posed body)

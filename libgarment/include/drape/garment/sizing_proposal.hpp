@@ -53,4 +53,36 @@ SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedB
 SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, double waistband_girth_m,
                                  double ease_cm = kSkirtWaistEaseCm);
 
+/// Sleeve ease (cm): a sleeve opening this much longer than the largest girth of the arm
+/// it covers slides over the arm with room for the cloth's contact layer.
+constexpr double kSleeveEaseCm = 6.0;
+
+/// The largest girth (m) of the rest body's right upper arm over a sleeve of `sleeve_length_cm`:
+/// sections normal to the humerus (shoulder to elbow joint) from 35 % of its length (nearer
+/// the shoulder a section runs into the armpit) to the sleeve's hem, at most the elbow.
+/// \throw drape::InvalidInput if `shaped` does not fit the model or the length is not
+///        positive.
+double upper_arm_girth(const body::BodyModel& model, const body::ShapedBody& shaped, double sleeve_length_cm);
+
+/// `g` with its sleeve opening w1 widened to `arm_girth_m` + `ease_cm` if it is narrower
+/// (the stature ratio of propose_tshirt_sizing is too narrow for a heavy arm, which then
+/// passes through the sleeve). Tank tops (l1 = 0) are returned unchanged.
+TShirtSizing fit_sleeves(TShirtSizing g, double arm_girth_m, double ease_cm = kSleeveEaseCm);
+
+/// Neckline ease (cm): a neckline this much longer than the neck lies on the shoulders
+/// around its base (the stature ratio of propose_tshirt_sizing made it too small for a
+/// thick neck, and the bodice cut 24-42 mm into it: docs/dressing.md).
+constexpr double kNecklineEaseCm = 8.0;
+
+/// The girth (m) of the rest body's neck: the section normal to the neck (neck to head
+/// joint) 30 % of the way up from the neck joint (at the joint itself the section runs into
+/// the trapezius: 46-55 cm on the eval bodies, against 36-49 cm here).
+/// \throw drape::InvalidInput if `shaped` does not fit the model.
+double neck_girth(const body::BodyModel& model, const body::ShapedBody& shaped);
+
+/// `g` with its neckline radius r enlarged, if needed, so that the neckline (front and back
+/// arcs together) is at least `neck_girth_m` + `ease_cm`, as far as the shoulder seams keep
+/// 5 cm (2 r <= w2 - 10) and r stays in its range.
+TShirtSizing fit_neckline(TShirtSizing g, double neck_girth_m, double ease_cm = kNecklineEaseCm);
+
 }  // namespace drape::garment
