@@ -468,21 +468,6 @@ struct Simulator::Impl {
             pair_friction.push_back({f, k * (h - f.distance_m)});
     }
 
-    // Drops the lagged cloth–cloth friction of pairs no longer within the contact thickness
-    // at p (as drop_released_friction for the obstacle).
-    void drop_released_pair_friction(const Eigen::MatrixX3d& p) {
-        if (pair_friction.empty()) return;
-        const double h = options.contact_thickness_m;
-        std::size_t w = 0;
-        for (std::size_t k = 0; k < pair_friction.size(); ++k) {
-            const internal::ContactPair& pair = pair_friction[k].frame.pair;
-            Eigen::Matrix<double, 3, 4> x;
-            for (int c = 0; c < 4; ++c) x.col(c) = p.row(pair.v[static_cast<std::size_t>(c)]).transpose();
-            if (internal::pair_distance_squared(pair.kind, x) < h * h) pair_friction[w++] = pair_friction[k];
-        }
-        pair_friction.resize(w);
-    }
-
     bool friction_active() const { return step_dt > 0 || static_friction; }
     double friction_epsilon() const {
         return options.friction_slip_speed_m_per_s * (step_dt > 0 ? step_dt : options.static_damping_time_s);
@@ -792,7 +777,6 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                 self_contact.find_candidates(p, needed + kCandidateMargin * h);
         }
         if (it == 0) lag_pair_friction(p);
-        else drop_released_pair_friction(p);
         const double contact_seconds = seconds_since(tc);
         s.seconds_contact += contact_seconds;
         if (small_full_step) {
