@@ -437,7 +437,7 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
     // Where each garment is deepest inside the body (for the summary: which panel, where,
     // and the body joint that mainly moves the face it is under).
     const cloth::Obstacle body_obstacle(body_V, body_F);
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> skin = model.skin_weights;
+    const std::vector<int> joint_of = body::dominant_joints(model);
     const auto deepest_inside = [&](std::size_t i) {
         nlohmann::json out = nullptr;
         double depth = 0;
@@ -445,14 +445,11 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
             const cloth::ObstacleQuery q = body_obstacle.closest(draped[i].row(v).transpose(), 0.1);
             if (!q.found || -q.signed_distance_m <= depth) continue;
             depth = -q.signed_distance_m;
-            int joint = 0;
-            double best = -1;
-            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(skin, body_F(q.face, 0)); it; ++it)
-                if (it.value() > best) best = it.value(), joint = int(it.col());
+            const int joint = joint_of[size_t(body_F(q.face, 0))];
             out = {{"panel", patterns[i].panels[size_t(meshes[i].panel_of_vertex(v))].name},
                    {"position_m", {draped[i](v, 0), draped[i](v, 1), draped[i](v, 2)}},
                    {"depth_m", depth},
-                   {"body_joint", std::string(body::kJointNames[size_t(joint)])}};
+                   {"body_joint", joint >= 0 ? std::string(body::kJointNames[size_t(joint)]) : std::string()}};
         }
         return out;
     };

@@ -93,4 +93,15 @@ ShapedBody shape_from_coefficients(const BodyModel& model, const Eigen::VectorXd
     return out;
 }
 
+std::vector<int> dominant_joints(const BodyModel& model) {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    std::vector<int> dominant(static_cast<std::size_t>(W.rows()), -1);
+    for (Eigen::Index v = 0; v < W.rows(); ++v) {
+        double w = 0;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, v); it; ++it)
+            if (it.value() > w) w = it.value(), dominant[static_cast<std::size_t>(v)] = static_cast<int>(it.col());
+    }
+    return dominant;
+}
+
 }  // namespace drape::body

@@ -63,7 +63,7 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
             model.vertex_count());
     // Region of each face: that of its vertices' dominant joints when all three agree.
     std::vector<int> vertex_region;
-    for (const int joint : detail::dominant_joints(model)) vertex_region.push_back(joint >= 0 ? region_of_joint(joint) : kOther);
+    for (const int joint : body::dominant_joints(model)) vertex_region.push_back(joint >= 0 ? region_of_joint(joint) : kOther);
     std::vector<int> face_region(size_t(model.faces.rows()), kOther);
     for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
         const int r = vertex_region[size_t(model.faces(f, 0))];

@@ -1,10 +1,9 @@
 // Initial garment registration: rigid alignment, skinning and interpenetration removal.
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/mesh_inside.hpp>
+#include <drape/garment/sizing_proposal.hpp>
 
 #include "dressing_internal.hpp"
-
-#include <drape/body/measurements.hpp>
 
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
@@ -450,17 +449,6 @@ bool has_sleeves(const Pattern& pattern) {
     return false;
 }
 
-std::vector<int> dominant_joints(const body::BodyModel& model) {
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
-    std::vector<int> dominant(size_t(W.rows()), -1);
-    for (Eigen::Index b = 0; b < W.rows(); ++b) {
-        double w = 0;
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(W, b); it; ++it)
-            if (it.value() > w) w = it.value(), dominant[size_t(b)] = int(it.col());
-    }
-    return dominant;
-}
-
 std::vector<LayerPair> layer_pairs(const GarmentMesh& mesh, const Eigen::MatrixX3d& X, double radius_m,
                                    double rest_radius_m) {
     const Eigen::MatrixX3i& F = mesh.cloth.faces;
@@ -674,7 +662,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     const int nbins = int(std::ceil((rest_local.col(1).maxCoeff() - y_lo) / bin)) + 1;
     std::vector<Eigen::Vector4d> box(size_t(nbins), Eigen::Vector4d(1e300, -1e300, 1e300, -1e300));
     const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
-    const std::vector<int> dominant = detail::dominant_joints(model);  // joint of the largest weight
+    const std::vector<int> dominant = body::dominant_joints(model);  // joint of the largest weight
     {
         const std::set<int> trunk = {index(Joint::pelvis), index(Joint::spine), index(Joint::chest),
                                      index(Joint::neck), index(Joint::left_clavicle),
@@ -713,19 +701,9 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         double waist_cm = 0;
         for (size_t p = 0; p < pattern.panels.size(); ++p)
             if (const int e = detail::waist_edge(pattern, p); e >= 0) waist_cm += pattern.panels[p].edges[size_t(e)].length();
-        const Eigen::Vector3d spine = rest.row(index(Joint::spine)).transpose();
-        const Eigen::Vector3d pelvis = rest.row(index(Joint::pelvis)).transpose();
-        const int steps = std::max(1, int(std::ceil((spine.y() - pelvis.y()) / 0.01)));
-        double narrowest = 1e300, narrowest_y = spine.y(), fits_y = std::numeric_limits<double>::quiet_NaN();
-        for (int k = 0; k <= steps && std::isnan(fits_y); ++k) {
-            const Eigen::Vector3d c = spine + (pelvis - spine) * double(k) / steps;
-            const double g = body::section_girth(shaped.vertices, model.faces, c, Eigen::Vector3d::UnitY());
-            if (g <= 0) continue;
-            if (g <= 0.01 * waist_cm) fits_y = c.y();
-            if (g < narrowest) narrowest = g, narrowest_y = c.y();
-        }
-        skirt_waist_y = (std::isnan(fits_y) ? narrowest_y : fits_y) - root.y();
-        summary.skirt_waist_drop_m = spine.y() - (skirt_waist_y + root.y());
+        const double y = skirt_waist_fit(model, shaped, 0.01 * waist_cm).height_m;
+        skirt_waist_y = y - root.y();
+        summary.skirt_waist_drop_m = rest(index(Joint::spine), 1) - y;
     }
     Eigen::VectorXd pelvis_weight;
     Eigen::MatrixX3d X = detail::wrap_panels(pattern, mesh, garment_joints, torso_section, &pelvis_weight, nullptr,

@@ -1,7 +1,6 @@
 // Shared between the dressing_*.cpp files (not installed).
 #pragma once
 
-#include <drape/body/body_model.hpp>
 #include <drape/body/skeleton.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern.hpp>
@@ -94,9 +93,6 @@ Eigen::MatrixX3i sewn_faces(const GarmentMesh& mesh);
 
 /// Whether any panel of the pattern is a sleeve.
 bool has_sleeves(const Pattern& pattern);
-
-/// Per body vertex, the joint of its largest skinning weight (-1 without weights).
-std::vector<int> dominant_joints(const body::BodyModel& model);
 
 /// A vertex and a triangle that may come into contact (see layer_pairs).
 struct LayerPair {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace drape::garment {
 
@@ -66,20 +68,43 @@ SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, const Ease& ea
     return skirt_for_waist((cm(m.waist_girth_m) + ease.waist_cm) / 2, cm(m.height_m));
 }
 
-SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedBody& shaped) {
-    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
-            "skirt_waistband: the shaped body does not fit the model");
+namespace {
+// The horizontal trunk sections (body::section_girth) from the spine joint down to the pelvis
+// joint, 1 cm apart, highest first: (height in the rest frame, girth), girth > 0.
+std::vector<std::pair<double, double>> waist_sections(const body::BodyModel& model, const body::ShapedBody& shaped,
+                                                      const char* caller) {
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3, caller,
+            ": the shaped body does not fit the model");
     const Eigen::Vector3d spine = shaped.joints.row(body::index(body::Joint::spine)).transpose();
     const Eigen::Vector3d pelvis = shaped.joints.row(body::index(body::Joint::pelvis)).transpose();
     const int steps = std::max(1, int(std::ceil((spine.y() - pelvis.y()) / 0.01)));
-    SkirtWaistband band;
+    std::vector<std::pair<double, double>> sections;
     for (int k = 0; k <= steps; ++k) {
         const Eigen::Vector3d p = spine + (pelvis - spine) * double(k) / steps;
         const double g = body::section_girth(shaped.vertices, model.faces, p, Eigen::Vector3d::UnitY());
-        if (g > 0 && (band.girth_m == 0 || g < band.girth_m)) band.girth_m = g, band.height_m = p.y();
+        if (g > 0) sections.emplace_back(p.y(), g);
     }
-    require(band.girth_m > 0, "skirt_waistband: no trunk section between the spine and pelvis joints");
+    require(!sections.empty(), caller, ": no trunk section between the spine and pelvis joints");
+    return sections;
+}
+}  // namespace
+
+SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedBody& shaped) {
+    SkirtWaistband band;
+    for (const auto& [y, g] : waist_sections(model, shaped, "skirt_waistband"))
+        if (band.girth_m == 0 || g < band.girth_m) band.girth_m = g, band.height_m = y;
     return band;
+}
+
+SkirtWaistband skirt_waist_fit(const body::BodyModel& model, const body::ShapedBody& shaped, double waist_girth_m) {
+    require(std::isfinite(waist_girth_m) && waist_girth_m > 0, "skirt_waist_fit: waist girth ", waist_girth_m,
+            " m must be positive");
+    SkirtWaistband narrowest;
+    for (const auto& [y, g] : waist_sections(model, shaped, "skirt_waist_fit")) {
+        if (g <= waist_girth_m) return {g, y};
+        if (narrowest.girth_m == 0 || g < narrowest.girth_m) narrowest = {g, y};
+    }
+    return narrowest;
 }
 
 double upper_arm_girth(const body::BodyModel& model, const body::ShapedBody& shaped, double sleeve_length_cm) {

@@ -526,3 +526,28 @@ TEST_CASE("mannequin: a 90 degree wrist or forearm twist keeps 70 % of the cross
         CHECK(worst > 0.69);
     }
 }
+
+TEST_CASE("mannequin: dominant_joints names the joint of each vertex's largest skin weight", "[body][mannequin]") {
+    const BodyModel& model = BodyModel::default_model();
+    const std::vector<int> dominant = dominant_joints(model);
+    REQUIRE(int(dominant.size()) == model.vertex_count());
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
+    int checked = 0;
+    for (int v = 0; v < model.vertex_count(); v += 37) {
+        REQUIRE(dominant[size_t(v)] >= 0);
+        const double w = W.coeff(v, dominant[size_t(v)]);
+        for (int j = 0; j < kJointCount; ++j) CHECK(W.coeff(v, j) <= w);
+        ++checked;
+    }
+    CHECK(checked > 100);
+    // The vertex nearest each wrist and knee joint is moved by that limb (the joint itself
+    // its parent or a child).
+    for (const auto& [joint, parent] : {std::pair{Joint::right_wrist, Joint::right_elbow},
+                                        std::pair{Joint::left_knee, Joint::left_hip}}) {
+        Eigen::Index nearest = 0;
+        (model.template_vertices.rowwise() - model.template_joints.row(index(joint))).rowwise().squaredNorm().minCoeff(&nearest);
+        const int d = dominant[size_t(nearest)];
+        INFO(kJointNames[size_t(index(joint))] << ": nearest vertex moved by " << kJointNames[size_t(d)]);
+        CHECK((d == index(joint) || d == index(parent) || (d >= 0 && kJointParents[size_t(d)] == index(joint))));
+    }
+}

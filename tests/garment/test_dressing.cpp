@@ -583,6 +583,12 @@ TEST_CASE("drape: the 95th-percentile man's skirt, sized where its waistband sit
     const double narrowest_drop = spine_y - skirt_waistband(b.model, b.shaped).height_m;
     CHECK(dressed.skirt_waist_drop_m > 0.02);
     CHECK(dressed.skirt_waist_drop_m <= narrowest_drop + 1e-9);
+    CHECK(dressed.skirt_waist_drop_m == Approx(spine_y - skirt_waist_fit(b.model, b.shaped, 0.01 * 2 * g.l1).height_m));
+    // A waist wider than every section sits at the spine joint, one narrower than all at the
+    // narrowest section.
+    CHECK(skirt_waist_fit(b.model, b.shaped, 10.0).height_m == Approx(spine_y));
+    CHECK(skirt_waist_fit(b.model, b.shaped, 0.1).height_m == Approx(spine_y - narrowest_drop));
+    CHECK_THROWS_AS(skirt_waist_fit(b.model, b.shaped, -1.0), drape::InvalidInput);
     CHECK(s.usable());
     CHECK(s.mean_drop_m < 0.20);  // 15 cm: the band settles from the spine joint to his narrowest section
     const GarmentStateCheck c = check_garment_state(mesh, X, b.posed.vertices, b.model.faces);
@@ -717,7 +723,7 @@ TEST_CASE("drape diag: crossings over the drape of one case of the 60-case table
     // mainly moves the body face they are under (a vertex between two crossing body parts
     // cannot be outside both).
     const drape::cloth::Obstacle& obstacle = final_body;
-    const std::vector<int> joint_of = detail::dominant_joints(model);
+    const std::vector<int> joint_of = body::dominant_joints(model);
     for (int v = 0; v < X.rows(); ++v) {
         const auto q = obstacle.closest(X.row(v).transpose(), 1e9);
         if (q.signed_distance_m >= 0) continue;

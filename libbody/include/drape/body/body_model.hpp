@@ -75,6 +75,10 @@ struct BodyModel {
     static const BodyModel& default_model();
 };
 
+/// Per vertex of `model`, the joint of its largest skinning weight (-1 for a vertex without
+/// a positive weight): which body part moves it.
+std::vector<int> dominant_joints(const BodyModel& model);
+
 /// A body at rest: the template deformed by the shape coefficients.
 struct ShapedBody {
     Eigen::VectorXd coefficients;                       ///< K

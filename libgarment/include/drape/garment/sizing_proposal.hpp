@@ -46,6 +46,12 @@ struct SkirtWaistband {
 /// \throw drape::InvalidInput if `shaped` does not fit the model.
 SkirtWaistband skirt_waistband(const body::BodyModel& model, const body::ShapedBody& shaped);
 
+/// Where a skirt waist of `waist_girth_m` sits on the rest body: the highest of the same trunk
+/// sections (spine joint down to the pelvis joint) whose girth is at most that, else the
+/// narrowest (skirt_waistband). dress_garment dresses a circle skirt's waist there.
+/// \throw drape::InvalidInput if `shaped` does not fit the model or the girth is not positive.
+SkirtWaistband skirt_waist_fit(const body::BodyModel& model, const body::ShapedBody& shaped, double waist_girth_m);
+
 /// A skirt whose waist is `waistband_girth_m` (skirt_waistband) plus `ease_cm`;
 /// its length from the stature in `m`.
 /// 	hrow drape::InvalidInput if the measurements or the girth are not positive or the ease
