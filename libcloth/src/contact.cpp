@@ -7,16 +7,17 @@ namespace drape::cloth {
 double plane_contact_energy(const Eigen::Vector3d& x, const Eigen::Vector3d& point,
                             const Eigen::Vector3d& normal, double thickness_m,
                             double stiffness_n_per_m, Eigen::Vector3d* gradient,
-                            Eigen::Matrix3d* hessian) {
-    const double gap = thickness_m - normal.dot(x - point);
+                            Eigen::Matrix3d* hessian, double inside_factor) {
+    const double d = normal.dot(x - point), gap = thickness_m - d;
     if (gap <= 0) {
         if (gradient) gradient->setZero();
         if (hessian) hessian->setZero();
         return 0;
     }
-    if (gradient) *gradient = -stiffness_n_per_m * gap * normal;
-    if (hessian) *hessian = stiffness_n_per_m * normal * normal.transpose();
-    return 0.5 * stiffness_n_per_m * gap * gap;
+    const double depth = d < 0 ? -d : 0.0, extra = (inside_factor - 1) * stiffness_n_per_m;
+    if (gradient) *gradient = -(stiffness_n_per_m * gap + extra * depth) * normal;
+    if (hessian) *hessian = (stiffness_n_per_m + (depth > 0 ? extra : 0.0)) * normal * normal.transpose();
+    return 0.5 * stiffness_n_per_m * gap * gap + 0.5 * extra * depth * depth;
 }
 
 double friction_energy(const Eigen::Vector3d& displacement_m, const Eigen::Vector3d& normal,

@@ -34,6 +34,10 @@ constexpr double kCandidateMargin = 1.0;
 // A vertex's second contact plane of a step is made only for a surface facing the first
 // one: normals more than 90 degrees apart (a pinch), not a neighbouring patch of one surface.
 constexpr double kFacingPlanesCos = 0.0;
+// How far a vertex that was near the obstacle at the previous contact update is searched
+// for when it is no longer within the query radius (update_obstacle_contacts): deeper than
+// the half-thickness of most body parts, so a vertex pushed that far in is still found.
+constexpr double kLostContactRadius = 0.15;
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -131,6 +135,9 @@ bool SimulatorOptions::is_valid(std::string* why) const {
         return fail(detail::concat("static_damping_time_s = ", static_damping_time_s, " must be > 0"));
     if (!(std::isfinite(contact_thickness_m) && contact_thickness_m > 0))
         return fail(detail::concat("contact_thickness_m = ", contact_thickness_m, " must be > 0"));
+    if (!(std::isfinite(contact_inside_stiffness_factor) && contact_inside_stiffness_factor >= 1))
+        return fail(detail::concat("contact_inside_stiffness_factor = ", contact_inside_stiffness_factor,
+                                   " must be >= 1"));
     if (!(std::isfinite(contact_stiffness_n_per_m3) && contact_stiffness_n_per_m3 > 0))
         return fail(detail::concat("contact_stiffness_n_per_m3 = ", contact_stiffness_n_per_m3,
                                    " must be > 0"));
@@ -379,7 +386,17 @@ struct Simulator::Impl {
     // ---- contact queries -------------------------------------------------------------
     // Refreshes, for every free vertex, the closest obstacle point within the query radius
     // and the lagged friction force.
+    //
+    // A vertex that was within the query radius at the previous update (or whose previous
+    // distance is unknown: the first update of this simulator, or a changed vertex count) and
+    // is not found within it now is searched again out to kLostContactRadius: it may have
+    // been pushed deeper into the obstacle than the query radius (a stiff fabric pressed
+    // against the body harder than the penalty holds), and without a contact it would stay
+    // inside for good, with no force pushing it out.
     void update_obstacle_contacts(const Eigen::MatrixX3d& p) {
+        std::vector<double> previous(static_cast<std::size_t>(p.rows()), -std::numeric_limits<double>::infinity());
+        if (contacts.size() == previous.size())
+            for (std::size_t i = 0; i < previous.size(); ++i) previous[i] = contacts[i].distance;
         contacts.clear();
         if (!obstacle) return;
         const double h = options.contact_thickness_m;
@@ -389,7 +406,9 @@ struct Simulator::Impl {
             VertexContact& c = contacts[static_cast<std::size_t>(i)];
             c.vertex = i;
             if (pinned[static_cast<std::size_t>(i)]) return;
-            const ObstacleQuery q = obstacle->closest(p.row(i).transpose(), query_radius);
+            ObstacleQuery q = obstacle->closest(p.row(i).transpose(), query_radius);
+            if (!q.found && previous[static_cast<std::size_t>(i)] < query_radius)
+                q = obstacle->closest(p.row(i).transpose(), kLostContactRadius);
             if (!q.found) return;
             c.point = q.point;
             c.normal = q.normal;
@@ -416,14 +435,18 @@ struct Simulator::Impl {
     }
 
     // The lagged friction of a time step, from the contacts queried at its start: vertices
-    // within the thickness, with their contact normal and penalty force there.
+    // within the thickness, with their contact normal and penalty force there. A vertex
+    // behind the surface counts the force it would have on the surface (k h): the penalty's
+    // growth with depth is a correction, not a pressure, and friction from it held a
+    // vertex that a stiff skirt had pushed 27 mm into a thigh where it was (a tangential
+    // pull of 18 N could not move it).
     void lag_friction() {
         friction.clear();
         if (!friction_active() || !obstacle || options.obstacle_friction <= 0) return;
         const double h = options.contact_thickness_m;
         for (const VertexContact& c : contacts)
             if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h)
-                friction.push_back({c.vertex, c.normal, c.stiffness * (h - c.distance)});
+                friction.push_back({c.vertex, c.normal, c.stiffness * (h - std::max(c.distance, 0.0))});
     }
 
     // Drops the lagged friction of vertices no longer within the contact thickness.
@@ -571,7 +594,8 @@ struct Simulator::Impl {
                     const double ei = plane_contact_energy(p.row(i).transpose(), point, normal,
                                                            options.contact_thickness_m,
                                                            options.contact_stiffness_n_per_m3 * area(i),
-                                                           want_g ? &g3 : nullptr, want_h ? &h3 : nullptr);
+                                                           want_g ? &g3 : nullptr, want_h ? &h3 : nullptr,
+                                                           options.contact_inside_stiffness_factor);
                     if (ei <= 0) continue;
                     e += ei;
                     scatter(&vi, 1, want_g ? g3.data() : nullptr, want_h ? h3.data() : nullptr,
@@ -1251,6 +1275,9 @@ void Simulator::set_positions(const Eigen::MatrixX3d& positions_m) {
             " rows, expected ", impl_->x.rows());
     require(positions_m.allFinite(), "Simulator::set_positions: positions are not finite");
     impl_->x = positions_m;
+    // The vertices may have jumped anywhere: their previous obstacle distances are unknown,
+    // so the next contact update searches every vertex beyond the query radius too.
+    impl_->contacts.clear();
 }
 
 void Simulator::set_velocities(const Eigen::MatrixX3d& velocities_m_per_s) {

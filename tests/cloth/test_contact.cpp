@@ -86,6 +86,40 @@ TEST_CASE("plane contact energy: finite differences and the thickness", "[cloth]
     CHECK(plane_contact_energy(c, c, n, h, k) == Approx(0.5 * k * h * h));
 }
 
+TEST_CASE("plane contact energy: beta times as stiff behind the surface, C1 at the surface",
+          "[cloth][contact]") {
+    const Eigen::Vector3d c(0.1, -0.2, 0.3), n = Eigen::Vector3d(-0.2, 0.5, 0.8).normalized();
+    const double h = 5e-3, k = 800, beta = 10;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-4e-3, 4e-3);
+    for (int trial = 0; trial < 40; ++trial) {
+        // Half the points behind the plane (d in [-4, 0) mm), half in the layer.
+        const double d = trial % 2 ? -std::abs(u(rng)) - 1e-5 : std::abs(u(rng)) + 1e-5;
+        const Eigen::Vector3d x = c + d * n + Eigen::Vector3d(u(rng), u(rng), u(rng)).cross(n);
+        Eigen::Vector3d g;
+        Eigen::Matrix3d H;
+        plane_contact_energy(x, c, n, h, k, &g, &H, beta);
+        auto e = [&](const Eigen::Vector3d& y) { return plane_contact_energy(y, c, n, h, k, nullptr, nullptr, beta); };
+        CHECK((fd_gradient<3>(e, x, 1e-8) - g).norm() <= 1e-6 * (1 + g.norm()));
+        // The force: k (h - d) in the layer, k (h - d) + (beta - 1) k |d| behind the surface.
+        const double expected = k * (h - d) + (d < 0 ? (beta - 1) * k * -d : 0.0);
+        CHECK(-g.dot(n) == Approx(expected).epsilon(1e-9));
+        CHECK((H - (d < 0 ? beta : 1.0) * k * n * n.transpose()).norm() <= 1e-9 * k);
+    }
+    // Continuous value and slope at the surface; beta = 1 is the plain penalty.
+    const Eigen::Vector3d eps = 1e-9 * n;
+    CHECK(plane_contact_energy(c - eps, c, n, h, k, nullptr, nullptr, beta) ==
+          Approx(plane_contact_energy(c + eps, c, n, h, k, nullptr, nullptr, beta)).epsilon(1e-6));
+    Eigen::Vector3d g_in, g_out;
+    plane_contact_energy(c - eps, c, n, h, k, &g_in, nullptr, beta);
+    plane_contact_energy(c + eps, c, n, h, k, &g_out, nullptr, beta);
+    CHECK((g_in - g_out).norm() <= 1e-4 * g_out.norm());
+    const Eigen::Vector3d behind = c - 2e-3 * n;
+    CHECK(plane_contact_energy(behind, c, n, h, k, nullptr, nullptr, 1.0) == Approx(0.5 * k * 7e-3 * 7e-3));
+    CHECK(plane_contact_energy(behind, c, n, h, k, nullptr, nullptr, beta) ==
+          Approx(0.5 * k * 7e-3 * 7e-3 + 0.5 * (beta - 1) * k * 2e-3 * 2e-3));
+}
+
 TEST_CASE("friction energy: finite differences in the static and sliding regimes, Coulomb force",
           "[cloth][contact][friction]") {
     const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.1, 1).normalized();
@@ -200,6 +234,41 @@ TEST_CASE("a cloth square dropped on a sphere rests on it, outside, without cros
     CHECK(sim.positions()(scene.centre_vertex, 2) - top == Approx(scene.options.contact_thickness_m).margin(1.5e-3));
     // Friction holds the cloth: the centre has not slid off the top.
     CHECK(sim.positions().row(scene.centre_vertex).head<2>().norm() < 0.01);
+}
+
+TEST_CASE("a patch deeper inside the obstacle than the contact query radius is pushed back out",
+          "[cloth][contact][simulator]") {
+    // A 10 cm patch is put 30 mm inside the top of a 0.5 m sphere, twice as deep as the 15 mm
+    // within which contacts are searched. Without gravity, nothing but the contact can move
+    // it. A vertex found only within the query radius had no contact at all there and stayed
+    // inside for good (a stiff skirt pushed 51 mm into a thigh); the simulator now searches
+    // farther for vertices whose previous distance was within the radius or unknown, so the
+    // patch is pushed out, first from a fresh simulator, then again after set_positions
+    // puts it back in (its previous distances, out of reach by then, no longer count).
+    const TriangleMesh sphere = make_icosphere(3, 0.5);
+    SimulatorOptions options;
+    options.gravity_m_per_s2.setZero();
+    const double depth = 0.03, top = sphere.positions.col(2).maxCoeff();
+    const ClothMesh m = make_square_grid(4, 0.1, Eigen::Vector3d(-0.05, -0.05, top - depth), Eigen::Vector3d::UnitX(),
+                                         Eigen::Vector3d::UnitY());
+    Simulator sim(m, drape::test::gray_interlock_material(), options);
+    sim.set_obstacle(Obstacle(sphere.positions, sphere.faces));
+    REQUIRE(sim.contact_report().max_penetration_m > 0.025);
+    for (int round = 0; round < 2; ++round) {
+        for (int k = 0; k < 40; ++k) REQUIRE(sim.step().usable());
+        const ContactReport r = sim.contact_report();
+        INFO("round " << round << ": deepest " << 1000 * r.max_penetration_m << " mm, " << r.vertices_inside
+                      << " inside");
+        CHECK(r.vertices_inside == 0);
+        CHECK(r.min_obstacle_distance_m > 0);
+        if (round == 0) {
+            // Flat again, 30 mm inside the top (the push sent it up and away).
+            Eigen::MatrixX3d in = m.positions;
+            sim.set_positions(in);
+            sim.set_velocities(Eigen::MatrixX3d::Zero(in.rows(), 3));
+            REQUIRE(sim.contact_report().max_penetration_m > 0.025);
+        }
+    }
 }
 
 TEST_CASE("buckling steps end after max_nonconvex_step_iterations regularised iterations",

@@ -20,14 +20,16 @@ namespace drape::cloth {
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-/// Penalty of one vertex against a contact plane: ½ k (h − n·(x − c))² if n·(x − c) < h,
-/// else 0. \param x vertex (world, m); \param point c and \param normal n (unit) of the plane;
-/// \param thickness_m h; \param stiffness_n_per_m k. \param gradient (3) and \param hessian
-/// (3 x 3; k nnᵀ, PSD) if not null.
+/// Penalty of one vertex against a contact plane: with d = n·(x − c), ½ k (h − d)² if d < h,
+/// else 0, plus ½ (β − 1) k d² behind the plane (d < 0), so that the penalty is β times as
+/// stiff once the vertex has crossed the surface (C¹ at d = 0). \param x vertex (world, m);
+/// \param point c and \param normal n (unit) of the plane; \param thickness_m h;
+/// \param stiffness_n_per_m k; \param inside_factor β >= 1. \param gradient (3) and
+/// \param hessian (3 x 3; k nnᵀ, β k nnᵀ behind the plane, PSD) if not null.
 double plane_contact_energy(const Eigen::Vector3d& x, const Eigen::Vector3d& point,
                             const Eigen::Vector3d& normal, double thickness_m,
                             double stiffness_n_per_m, Eigen::Vector3d* gradient = nullptr,
-                            Eigen::Matrix3d* hessian = nullptr);
+                            Eigen::Matrix3d* hessian = nullptr, double inside_factor = 1.0);
 
 /// Smoothed Coulomb friction of one vertex: μ λ f₀(|(I − nnᵀ) d|), d = x − x_ref.
 /// \param displacement_m d; \param normal n (unit); \param normal_force_n λ >= 0;

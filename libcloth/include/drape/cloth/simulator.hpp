@@ -78,6 +78,11 @@ struct SimulatorOptions {
     /// Penalty stiffness per unit vertex area (N/m³): vertex i gets k_i = this × A_i, so the
     /// penetration into the thickness layer is pressure / this, independent of resolution.
     double contact_stiffness_n_per_m3 = 1e6;
+    /// The obstacle penalty is this many times as stiff behind the obstacle's surface as in
+    /// the layer in front of it (plane_contact_energy's β, >= 1): a vertex pressed into the
+    /// body by a tight neckline or a stiff fabric stops near the surface instead of sinking
+    /// in by pressure / contact_stiffness (several mm at a neckline's edge).
+    double contact_inside_stiffness_factor = 10;
     double obstacle_friction = 0.3;  ///< Coulomb μ between cloth and obstacle, >= 0
     double cloth_friction = 0.6;     ///< Coulomb μ between cloth layers (self-contact), >= 0
     /// Friction is static-like below a slip speed of this (m/s); ε = this × Δt.
