@@ -4,6 +4,7 @@
 #include <drape/core/errors.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 
@@ -15,6 +16,9 @@ using body::Joint;
 using body::index;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kCrotchBlendCm = 8.0;  // pants: leg tubes -> pelvis tube above the crotch
+// A circle skirt is dressed as a cone no flatter than this (sin of its half-angle): a full
+// circle (span π per panel) would lie flat; at 0.95 its meridian starts 5 % stretched.
+constexpr double kMaxSkirtConeSin = 0.95;
 
 }  // namespace
 
@@ -69,6 +73,23 @@ std::pair<double, double> full_height_range(const std::vector<Eigen::Vector2d>& 
 // Ramanujan's perimeter of an ellipse with semi-axes a, b.
 double ellipse_perimeter(double a, double b) {
     return kPi * (3 * (a + b) - std::sqrt((3 * a + b) * (a + 3 * b)));
+}
+
+// The angle θ (from the front, x = a sin θ, z = b cos θ) at which the arc from θ = 0 is the
+// fraction 2|t| of a quarter of the ellipse's perimeter, with the sign of t (t in [-½, ½]):
+// the arc-length parameterisation of the half turn θ in [-π/2, π/2] that a panel covers, by
+// the trapezoidal rule on 64 intervals.
+static double ellipse_angle_at_arc_fraction(double a, double b, double t) {
+    constexpr int kN = 64;
+    std::array<double, kN + 1> arc{};
+    const auto speed = [&](double th) { return std::hypot(a * std::cos(th), b * std::sin(th)); };
+    const double dth = 0.5 * kPi / kN;
+    for (int k = 1; k <= kN; ++k) arc[k] = arc[k - 1] + 0.5 * dth * (speed((k - 1) * dth) + speed(k * dth));
+    const double s = std::min(std::abs(t), 0.5) * 2 * arc[kN];
+    const int k = std::min(int(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()) - 1, kN - 1);
+    const double f = std::clamp((s - arc[k]) / std::max(arc[k + 1] - arc[k], 1e-300), 0.0, 1.0);
+    const double th = (k + f) * dth;
+    return t < 0 ? -th : th;
 }
 
 double top_of(const Panel& panel) {
@@ -297,6 +318,31 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
             for (auto& a : poly) a = polar(a);
         }
         const auto [y_full_lo, y_full_hi] = full_height_range(poly);
+        // A skirt panel's angular extent at radius ρ runs between its two side seams
+        // (edges 1 and 3, straight lines from the waist arc's ends, alpha apart): the
+        // angles at which the circle of radius ρ about the waist centre crosses them. The
+        // panel's outline is no slice for this: the side seams diverge more than the waist
+        // arc's radii (alpha against l1 / r1), so the hem's middle lies farther from the
+        // centre than its corners, and the outline's slice at a hem vertex's own radius was a
+        // sliver about the middle, which wrapped that vertex onto a tiny ring between the
+        // legs (a heavy man's skirt: hem edges dressed 626 % stretched, pushed out behind
+        // his thighs, and one vertex left 51 mm inside one). The side-seam crossings are
+        // exact at every radius: seam vertices land on t = ±½ and each ring's length is the
+        // pattern's arc length between the seams.
+        const bool side_seams = skirt_r1 > 0 && panel.edges.size() == 4 &&
+                                panel.edges[1].kind == EdgeKind::line && panel.edges[3].kind == EdgeKind::line;
+        const auto seam_angle = [&](const Edge& e, double rho) {
+            // Start from the edge's end nearer the waist centre, outwards along the line.
+            Eigen::Vector2d a = e.start, b = e.end;
+            if ((a - skirt_centre).norm() > (b - skirt_centre).norm()) std::swap(a, b);
+            const Eigen::Vector2d d = (b - a).normalized(), w = a - skirt_centre;
+            const double wd = w.dot(d), disc = std::max(wd * wd - w.squaredNorm() + rho * rho, 0.0);
+            return polar(a + (-wd + std::sqrt(disc)) * d).x();
+        };
+        const auto seam_span = [&](double rho) {
+            const double a = seam_angle(panel.edges[1], rho), b = seam_angle(panel.edges[3], rho);
+            return std::pair<double, double>(std::min(a, b), std::max(a, b));
+        };
         const bool back = place.body_part == BodyPart::back_torso ||
                           (role == Role::leg && panel.name.rfind("back", 0) == 0);
         for (int v = 0; v < nv; ++v) {
@@ -307,7 +353,8 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                 continue;
             }
             const Eigen::Vector2d q = skirt_r1 > 0 ? polar(q0) : q0;
-            const auto [x_lo, x_hi] = slice(poly, std::clamp(q.y(), y_full_lo, y_full_hi));
+            const auto [x_lo, x_hi] =
+                side_seams ? seam_span(-q.y()) : slice(poly, std::clamp(q.y(), y_full_lo, y_full_hi));
             const double t = std::clamp((q.x() - 0.5 * (x_lo + x_hi)) / (x_hi - x_lo), -0.5, 0.5);
             const double width = skirt_r1 > 0 ? -q.y() * (x_hi - x_lo) : x_hi - x_lo;  // cm
             if (role == Role::sleeve) {
@@ -333,7 +380,18 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
             double y = 0;
             Eigen::Vector2d centre;
             if (role == Role::torso) y = neck_y + 0.01 * (q.y() - top);
-            if (role == Role::skirt) y = skirt_r1 > 0 ? skirt_top_y - 0.01 * (-q.y() - skirt_r1) : skirt_top_y + 0.01 * q.y();
+            if (role == Role::skirt && skirt_r1 > 0) {
+                // A circle skirt hangs as the cone its fan makes: the girth at radius ρ is
+                // 2ρ·span (front and back panel), so the ring's mean radius grows by span/π
+                // per unit of ρ and the meridian, whose length is ρ − r1, drops by cos φ of it
+                // (sin φ = span/π). Hung straight down (drop ρ − r1) the meridian started
+                // stretched by 1/cos φ − 1 (16 % for 2 × 107°) and sprang up as soon as the
+                // drape began.
+                const double sin_phi = std::min((x_hi - x_lo) / kPi, kMaxSkirtConeSin);
+                y = skirt_top_y - 0.01 * (-q.y() - skirt_r1) * std::sqrt(1 - sin_phi * sin_phi);
+            } else if (role == Role::skirt) {
+                y = skirt_top_y + 0.01 * q.y();
+            }
             if (role == Role::leg) y = waist_y + 0.01 * (q.y() - pants_waist_cm);
             if (role == Role::leg && y < J(index(place.body_part == BodyPart::left_leg ? Joint::left_hip : Joint::right_hip), 1)) {
                 const bool left = place.body_part == BodyPart::left_leg;
@@ -349,13 +407,18 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
             // Each panel covers half a turn: the front from -X to +X through +Z, the back
             // (turned about Y) from +X to -X through -Z. Torso and skirt panels wrap an
             // ellipse shaped like the torso section with the garment's girth (front + back).
-            const double theta = kPi * t;
             double ax = 0.01 * width / kPi, az = ax;
+            double theta = kPi * t;
             if (role != Role::leg) {
                 const Eigen::Vector2d sec = torso_section(y).cwiseMax(0.02);
                 const double s_ = 2 * 0.01 * width / ellipse_perimeter(sec.x(), sec.y());
                 ax = s_ * sec.x();
                 az = s_ * sec.y();
+                // Spaced by arc length, not by angle: on a section wider than deep the angle
+                // crowds the arc at the sides and stretches it at the front and back (ds/dθ
+                // is ax there, az at the sides), which dressed a skirt's front waist 60 %
+                // longer than its pattern on the default body.
+                theta = ellipse_angle_at_arc_fraction(ax, az, t);
             }
             const double sx = back ? -1.0 : 1.0;
             out.row(v) << centre.x() + sx * ax * std::sin(theta), y, centre.y() + sx * az * std::cos(theta);
