@@ -679,6 +679,33 @@ TEST_CASE("drape: the median woman's pants through a walking step stay free of c
     CHECK(c.max_penetration_m <= 1e-3);
 }
 
+TEST_CASE("drape: the 5th-percentile woman's t-shirt through a walking step comes to rest",
+          "[garment][drape]") {
+    // Case of the 60-case table (docs/dressing.md). With the stretching stiffness frozen
+    // afresh at every step's start, an underarm vertex of this t-shirt alternated between
+    // two places 1.7 mm apart for 400 steps (every step's Newton converged; the strain of
+    // its faces sat where the table changes fast): not at rest after 600 steps. The
+    // simulator now under-relaxes the stiffness across steps (docs/cloth.md).
+    const drape::cloth::Material material = drape::cloth::builtin_material("gray-interlock");
+    const ShapedAnsurBody b(kEvalBodies[0]);  // female_p5
+    REQUIRE(std::string(kEvalBodies[0].name) == "female_p5");
+    const body::BodyModel& model = b.model;
+    const body::ShapedBody& shaped = b.shaped;
+    const body::Pose pose = clear_arms_from_trunk(model, shaped, body::named_pose(body::NamedPose::walking));
+    TShirtSizing g = propose_tshirt_sizing(b.m);  // as drape eval-dress: fitted to arms and neck
+    g = fit_neckline(fit_sleeves(g, upper_arm_girth(model, shaped, g.l1)), neck_girth(model, shaped));
+    const Pattern pattern = make_tshirt(g);
+    const GarmentMesh mesh = mesh_at_4cm(pattern);
+    Eigen::MatrixX3d X;
+    DressingSummary dressed;
+    const DrapeSummary s =
+        dress_and_drape(pattern, mesh, model, shaped, pose, material, DressingOptions{}, DrapeOptions{}, X, &dressed);
+    INFO(dressed.brief_report() << "; " << s.brief_report());
+    CHECK(s.converged);
+    CHECK(s.usable());
+    CHECK(s.steps < 450);
+}
+
 // Diagnostic (hidden): the crossings of a garment of the 60-case table over the drape,
 // every 5 steps, with where they are (panels, centre of the first face). DRAPE_DIAG_BODY
 // (female_p50), DRAPE_DIAG_GARMENT (pants|skirt|tshirt), DRAPE_DIAG_POSE

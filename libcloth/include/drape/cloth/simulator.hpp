@@ -71,6 +71,12 @@ struct SimulatorOptions {
     /// near its draped state and slides.
     bool static_friction = true;
 
+    /// Time steps freeze the stretching stiffness at the mean of the table's value at the
+    /// step's start and the previous step's (an under-relaxed fixed point; see simulator.cpp
+    /// refresh_stiffness): frozen afresh each step, a strain where the table changes fast
+    /// can cycle with period 2 and never come to rest. false: the table's value alone.
+    bool relax_stretching_stiffness = true;
+
     // ---- contact ----
     /// Cloth–obstacle and cloth–cloth contact thickness h (m): a vertex is pushed back while
     /// it is closer than h to the obstacle surface or to another part of the cloth.
