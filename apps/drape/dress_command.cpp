@@ -147,6 +147,7 @@ cv::Mat write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const
         g.UV = meshes[k]->uv;
         g.material.colour_srgb = colours[k % colours.size()];
         g.material.roughness = 0.85;
+        g.smooth_subdivisions = 2;  // the flat simulated triangles cut chords through the body
         scene.meshes.push_back(std::move(g));
         floor_y = std::min(floor_y, Xs[k].col(1).minCoeff());
     }

@@ -38,6 +38,7 @@ struct RenderArgs {
     std::vector<std::string> colours;
     std::vector<int> labels;
     std::vector<std::string> prints;
+    int smooth = 0;
     std::string lighting = "studio";
     std::string camera = "auto";
     std::string photo;
@@ -275,6 +276,7 @@ void run_render(const RenderArgs& args) {
         m.material.colour_srgb = args.colours.empty() ? palette[i % palette.size()] : parse_colour(args.colours[colour_index++]);
         m.material.roughness = 0.85;
         if (!args.prints.empty()) m.material.print = parse_print(args.prints[i]);
+        m.smooth_subdivisions = args.smooth;
         m.label = args.labels.empty() ? label_from_name(args.meshes[i]) : args.labels[i];
         scene.meshes.push_back(std::move(m));
     }
@@ -344,6 +346,10 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--print", args->prints,
                     "KIND[:PERIOD_M] per --mesh: solid, stripes, checks, dots (white on the colour; "
                     "mapped by world x, y since mesh files carry no pattern UVs)");
+    cmd->add_option("--smooth", args->smooth,
+                    "levels of Phong tessellation of every --mesh before drawing, 0..4 (default 0; 2 "
+                    "turns a 6 cm simulated garment into 1.5 cm triangles on its smooth surface)")
+        ->check(CLI::Range(0, 4));
     cmd->add_option("--lighting", args->lighting, "midday | sunset | studio (default studio)");
     cmd->add_option("--camera", args->camera,
                     "auto (default: fitted if body.json has a camera, else front) | fitted (body.json's "

@@ -38,6 +38,8 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
+// Levels of Phong tessellation of the draped garments in the renders (6 cm edges -> 1.5 cm).
+constexpr int kGarmentSmoothSubdivisions = 2;
 
 // splitmix64 (Steele, Lea, Flood 2014): a fully specified 64-bit generator, so scenes do
 // not depend on the standard library's distributions.
@@ -510,6 +512,9 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
                                                             : Eigen::MatrixXd(meshes[i].uv);
         g.material = scene.garments[i].look;
         g.label = scene.garments[i].label;
+        // Drawn on its Phong-tessellated surface: the simulated mesh's flat triangles cut
+        // chords through the body (drape::render::phong_tessellate).
+        g.smooth_subdivisions = kGarmentSmoothSubdivisions;
         floor_y = std::min(floor_y, g.V.col(1).minCoeff());
         rs.meshes.push_back(std::move(g));
     }

@@ -482,3 +482,75 @@ TEST_CASE("a progress callback can cancel a render", "[render][progress]") {
     CHECK_FALSE(s.usable());
     CHECK(calls == 2);  // bands of 64 rows: 64/200 continues, 128/200 cancels
 }
+
+TEST_CASE("phong tessellation refines a coarse sphere towards the sphere, seams stay closed",
+          "[render][tessellation]") {
+    // A level-1 icosphere (edges 32 degrees apart) with its exact normals, tessellated twice:
+    // linear midpoints (alpha 0) lie up to 6 % inside the unit sphere, Phong midpoints (alpha
+    // 0.75, the second level from averaged normals) within 3 % (slightly outside).
+    const Mesh coarse = icosphere(Eigen::Vector3d::Zero(), 1.0, 1, 3);
+    const auto worst = [](const Mesh& m) {
+        double e = 0;
+        for (Eigen::Index i = 0; i < m.V.rows(); ++i) e = std::max(e, std::abs(m.V.row(i).norm() - 1));
+        return e;
+    };
+    const Mesh flat = phong_tessellate(coarse, 2, 0.0), smooth = phong_tessellate(coarse, 2);
+    INFO("largest radial error: linear " << worst(flat) << ", Phong " << worst(smooth));
+    CHECK(smooth.F.rows() == 16 * coarse.F.rows());
+    // Shared edges are split once: V - E + F = 2 for the closed sphere.
+    CHECK(smooth.V.rows() == smooth.F.rows() / 2 + 2);
+    CHECK(worst(flat) > 0.05);
+    CHECK(worst(smooth) < 0.03);
+    CHECK(smooth.smooth_subdivisions == 0);
+    CHECK_THROWS_AS(phong_tessellate(coarse, -1), drape::InvalidInput);
+    CHECK_THROWS_AS(phong_tessellate(coarse, 1, 1.5), drape::InvalidInput);
+
+    // Two triangles of a bent sheet whose shared edge has its own vertices on each side (a
+    // seam), no normals given: the midpoints of the seam agree exactly on both sides, and
+    // UVs are interpolated.
+    Mesh seam;
+    seam.V.resize(6, 3);
+    seam.V << 0, 0, 0, 1, 0, 0.3, 0, 1, 0,  // triangle 0
+        1, 0, 0.3, 1, 1, 0, 0, 1, 0;        // triangle 1: its own copies of (1, 0, .3), (0, 1, 0)
+    seam.F.resize(2, 3);
+    seam.F << 0, 1, 2, 3, 4, 5;
+    seam.UV.resize(6, 2);
+    seam.UV << 0, 0, 1, 0, 0, 1, 1, 0, 1, 1, 0, 1;
+    const Mesh t = phong_tessellate(seam, 1);
+    std::vector<Eigen::Vector3d> mids;
+    for (Eigen::Index i = 6; i < t.V.rows(); ++i) {
+        const Eigen::Vector2d uv = t.UV.row(i).transpose();
+        if (std::abs(uv.x() + uv.y() - 1) < 1e-12) mids.push_back(t.V.row(i).transpose());  // on the diagonal
+    }
+    REQUIRE(mids.size() == 2);
+    CHECK((mids[0] - mids[1]).norm() == 0.0);
+}
+
+TEST_CASE("a coarse garment drawn with smooth_subdivisions hides the body under it",
+          "[render][tessellation]") {
+    // A coarse shell (level-1 icosphere, radius 1) 3 % outside a fine "body" sphere: drawn
+    // flat its triangles cut chords into the body, which shows through; Phong-tessellated
+    // twice it covers it.
+    Scene scene;
+    scene.meshes.push_back(icosphere(Eigen::Vector3d::Zero(), 0.97, 5, 41));
+    scene.meshes.push_back(icosphere(Eigen::Vector3d::Zero(), 1.0, 1, 51));
+    scene.meshes[1].N.resize(0, 3);  // the garment's own area-weighted normals
+    const Camera cam = Camera::look_at({0.3, 0.4, 4.0}, {0, 0, 0}, {0, 1, 0}, 300, 200, 200);
+    RenderOptions opt;
+    opt.samples_per_pixel = 1;
+    const auto body_pixels = [&](int levels) {
+        scene.meshes[1].smooth_subdivisions = levels;
+        RenderImages img;
+        REQUIRE(render(scene, cam, flat_lighting(), opt, img).usable());
+        int n = 0;
+        for (int y = 0; y < img.labels.rows; ++y)
+            for (int x = 0; x < img.labels.cols; ++x) n += img.labels.at<std::uint8_t>(y, x) == 41;
+        return n;
+    };
+    const int flat = body_pixels(0), smooth = body_pixels(2);
+    INFO("body pixels: flat " << flat << ", tessellated " << smooth);
+    CHECK(flat > 500);
+    CHECK(smooth == 0);
+    scene.meshes[1].smooth_subdivisions = 5;
+    CHECK_THROWS_AS(scene.validate(), drape::InvalidInput);
+}

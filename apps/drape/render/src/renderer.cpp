@@ -207,8 +207,24 @@ Eigen::Vector3d Renderer::Impl::shade(const RTCRayHit& rh, const Ray& ray, const
     const Eigen::Vector3d albedo =
         !m.material.texture.empty() ? texture_at(m.material, uv)
                                     : linear_colours[rh.hit.geomID][print_second_colour(m.material.print, uv) ? 1 : 0];
-    // Offset against self-intersection, scaled to single-precision resolution at P.
-    const Eigen::Vector3d Po = P + Ng * (2e-4 * std::max(1.0, P.cwiseAbs().maxCoeff()));
+    // Shadow and sky rays start from the point the smooth normals describe (Hanika 2021,
+    // "Hacking the shadow terminator"): P projected onto the three vertices' tangent planes,
+    // blended by the barycentrics, when that lies in front of the flat triangle. From the
+    // flat triangle itself, a coarse surface lit at a grazing angle shadows itself in
+    // triangle-shaped dark patches the smooth shading does not explain. Then an offset
+    // against self-intersection, scaled to single-precision resolution at P.
+    Eigen::Vector3d Ps = P;
+    {
+        Eigen::Vector3d Pt = Eigen::Vector3d::Zero();
+        const int corner[3] = {i0, i1, i2};
+        const double weight[3] = {w, u, v};
+        for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d pk = m.V.row(corner[k]).transpose(), nk = m.N.row(corner[k]).transpose();
+            Pt += weight[k] * (P - (P - pk).dot(nk) * nk);
+        }
+        if ((Pt - P).dot(Ng) > 0 && Pt.allFinite()) Ps = Pt;
+    }
+    const Eigen::Vector3d Po = Ps + Ng * (2e-4 * std::max(1.0, P.cwiseAbs().maxCoeff()));
     const Eigen::Vector3d V = -ray.direction;
 
     Eigen::Vector3d out = Eigen::Vector3d::Zero();
@@ -243,8 +259,10 @@ Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     scene.validate();
     impl_->meshes = scene.meshes;
     impl_->user_meshes = scene.meshes.size();
-    for (Mesh& m : impl_->meshes)
+    for (Mesh& m : impl_->meshes) {
+        if (m.smooth_subdivisions > 0) m = phong_tessellate(m, m.smooth_subdivisions);
         if (m.N.size() == 0) m.N = vertex_normals(m.V, m.F);
+    }
     for (Mesh& m : stage_meshes(scene)) impl_->meshes.push_back(std::move(m));
     for (const Mesh& m : impl_->meshes)
         impl_->linear_colours.push_back({srgb_to_linear(m.material.colour_srgb),

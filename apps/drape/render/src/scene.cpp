@@ -4,8 +4,13 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "sampling.hpp"
 
@@ -35,6 +40,8 @@ void validate_mesh(const Mesh& m, size_t index) {
             who, ": UV must be empty or #V x 2 finite coordinates, got ", m.UV.rows(), " x ",
             m.UV.cols());
     require(m.label >= 0 && m.label <= 255, who, ": label must be in 0..255, got ", m.label);
+    require(m.smooth_subdivisions >= 0 && m.smooth_subdivisions <= 4, who,
+            ": smooth_subdivisions must be in 0..4, got ", m.smooth_subdivisions);
     std::string why;
     require(m.material.is_valid(&why), who, ": material: ", why);
 }
@@ -102,6 +109,84 @@ Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
         if (len > 0) N.row(v) /= len;
     }
     return N;
+}
+
+Mesh phong_tessellate(const Mesh& mesh, int levels, double alpha) {
+    require(levels >= 0, "phong_tessellate: levels must be >= 0, got ", levels);
+    require(alpha >= 0 && alpha <= 1, "phong_tessellate: alpha must be in [0, 1], got ", alpha);
+    Mesh m = mesh;
+    if (m.N.size() == 0) {
+        // Normals of the mesh with coincident vertices merged (the two sides of a seam).
+        std::map<std::array<double, 3>, int> group_of;
+        std::vector<int> group(static_cast<std::size_t>(m.V.rows()));
+        for (Eigen::Index i = 0; i < m.V.rows(); ++i)
+            group[static_cast<std::size_t>(i)] =
+                group_of.emplace(std::array<double, 3>{m.V(i, 0), m.V(i, 1), m.V(i, 2)}, int(group_of.size()))
+                    .first->second;
+        Eigen::MatrixXi Fg = m.F;
+        for (Eigen::Index f = 0; f < Fg.rows(); ++f)
+            for (int k = 0; k < 3; ++k) Fg(f, k) = group[static_cast<std::size_t>(m.F(f, k))];
+        Eigen::MatrixXd Vg(static_cast<Eigen::Index>(group_of.size()), 3);
+        for (Eigen::Index i = 0; i < m.V.rows(); ++i) Vg.row(group[static_cast<std::size_t>(i)]) = m.V.row(i);
+        const Eigen::MatrixXd Ng = vertex_normals(Vg, Fg);
+        m.N.resize(m.V.rows(), 3);
+        for (Eigen::Index i = 0; i < m.V.rows(); ++i) m.N.row(i) = Ng.row(group[static_cast<std::size_t>(i)]);
+    }
+    const bool uv = m.UV.size() != 0;
+    for (int level = 0; level < levels; ++level) {
+        std::vector<Eigen::Vector3d> V, N;
+        std::vector<Eigen::Vector2d> UV;
+        for (Eigen::Index i = 0; i < m.V.rows(); ++i) {
+            V.push_back(m.V.row(i).transpose());
+            N.push_back(m.N.row(i).transpose());
+            if (uv) UV.push_back(m.UV.row(i).transpose());
+        }
+        // Midpoints keyed by the ends' positions (not indices), so coincident edges agree.
+        std::map<std::array<double, 6>, Eigen::Vector3d> point_of;
+        std::map<std::pair<int, int>, int> index_of;
+        const auto midpoint = [&](int a, int b) {
+            const auto key = std::minmax(a, b);
+            if (const auto it = index_of.find(key); it != index_of.end()) return it->second;
+            const Eigen::Vector3d& pa = V[static_cast<std::size_t>(key.first)];
+            const Eigen::Vector3d& pb = V[static_cast<std::size_t>(key.second)];
+            std::array<double, 6> pk{pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z()};
+            if (std::lexicographical_compare(pk.begin() + 3, pk.end(), pk.begin(), pk.begin() + 3))
+                pk = {pb.x(), pb.y(), pb.z(), pa.x(), pa.y(), pa.z()};
+            auto it = point_of.find(pk);
+            if (it == point_of.end()) {
+                const Eigen::Vector3d& na = N[static_cast<std::size_t>(key.first)];
+                const Eigen::Vector3d& nb = N[static_cast<std::size_t>(key.second)];
+                const Eigen::Vector3d p = 0.5 * (pa + pb);
+                const Eigen::Vector3d pia = p - (p - pa).dot(na) * na, pib = p - (p - pb).dot(nb) * nb;
+                it = point_of.emplace(pk, (1 - alpha) * p + alpha * 0.5 * (pia + pib)).first;
+            }
+            V.push_back(it->second);
+            const Eigen::Vector3d n = N[static_cast<std::size_t>(key.first)] + N[static_cast<std::size_t>(key.second)];
+            N.push_back(n.norm() > 1e-12 ? Eigen::Vector3d(n.normalized()) : N[static_cast<std::size_t>(key.first)]);
+            if (uv) UV.push_back(0.5 * (UV[static_cast<std::size_t>(key.first)] + UV[static_cast<std::size_t>(key.second)]));
+            return index_of[key] = static_cast<int>(V.size()) - 1;
+        };
+        Eigen::MatrixXi F(4 * m.F.rows(), 3);
+        for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+            const int i0 = m.F(f, 0), i1 = m.F(f, 1), i2 = m.F(f, 2);
+            const int a = midpoint(i0, i1), b = midpoint(i1, i2), c = midpoint(i2, i0);
+            F.row(4 * f) << i0, a, c;
+            F.row(4 * f + 1) << i1, b, a;
+            F.row(4 * f + 2) << i2, c, b;
+            F.row(4 * f + 3) << a, b, c;
+        }
+        m.F = F;
+        m.V.resize(static_cast<Eigen::Index>(V.size()), 3);
+        m.N.resize(m.V.rows(), 3);
+        if (uv) m.UV.resize(m.V.rows(), 2);
+        for (std::size_t i = 0; i < V.size(); ++i) {
+            m.V.row(static_cast<Eigen::Index>(i)) = V[i].transpose();
+            m.N.row(static_cast<Eigen::Index>(i)) = N[i].transpose();
+            if (uv) m.UV.row(static_cast<Eigen::Index>(i)) = UV[i].transpose();
+        }
+    }
+    m.smooth_subdivisions = 0;
+    return m;
 }
 
 std::vector<Mesh> stage_meshes(const Scene& scene) {

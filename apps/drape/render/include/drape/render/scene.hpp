@@ -20,7 +20,22 @@ struct Mesh {
     Eigen::MatrixXd UV;  ///< #V x 2 texture coordinates, or empty (prints then use x, y)
     Material material;
     int label = 0;       ///< written to the label map, 0..255 (labels.txt ids for garments)
+    /// Levels of Phong tessellation (phong_tessellate) the renderer applies before drawing,
+    /// 0..4: a coarse simulated garment (4–6 cm edges) drawn flat cuts chords through the
+    /// body it rests 5 mm above (the body shows through) and shows its facets.
+    int smooth_subdivisions = 0;
 };
+
+/// Phong tessellation (Boubekeur & Alexa 2008) repeated `levels` times: every edge is split at
+/// its midpoint p, moved to (1 − α) p + α (π_a(p) + π_b(p)) / 2 with π_k the projection onto
+/// the tangent plane of end k (its vertex normal), so a mesh of points on a curved surface
+/// is refined towards that surface (a chord over a circle of radius r with ends 37° apart
+/// ends within 2 % of r at α = 0.75, instead of 20 % inside it). Each triangle becomes 4^levels;
+/// normals of new vertices are the normalised mean of the edge's ends; UVs are interpolated.
+/// Vertices at exactly the same position (the two sides of a seam) share their normal and
+/// give identical midpoints, so no crack opens between them. Empty N: area-weighted
+/// normals of the mesh with coincident vertices merged. \pre levels >= 0, α in [0, 1].
+Mesh phong_tessellate(const Mesh& mesh, int levels, double alpha = 0.75);
 
 /// A horizontal floor under the meshes (infinite for the camera: 40 m square).
 struct Floor {
