@@ -34,6 +34,9 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <fstream>
+#include <sstream>
+#include <tuple>
 #include <iomanip>
 #include <cmath>
 #include <cstdint>
@@ -398,6 +401,7 @@ struct EvalDressArgs {
     std::string materials_dir;
     double edge_cm = 4.0;
     bool outfit = true;
+    std::string docs;  // a Markdown file whose eval-dress block is replaced (see kDocsBegin)
     std::string out;
 };
 
@@ -416,8 +420,29 @@ std::vector<body::Pose> arms_cleared(const body::BodyModel& model, const body::S
     return out;
 }
 
+// `--docs FILE`: the lines between these markers are replaced by the run's table and its
+// summary line, and the contact sheet goes to images/dress_eval.jpg beside FILE.
+constexpr const char* kDocsBegin = "<!-- drape eval-dress: table begin -->";
+constexpr const char* kDocsEnd = "<!-- drape eval-dress: table end -->";
+
+// The text of `path` and where its eval-dress block's content starts and ends.
+// \throw IoError if unreadable, InvalidInput naming the file if a marker is missing.
+std::tuple<std::string, size_t, size_t> docs_block(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError("drape eval-dress: --docs " + path.string() + ": cannot read the file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string s = text.str();
+    const size_t b = s.find(kDocsBegin), e = s.find(kDocsEnd);
+    require(b != std::string::npos && e != std::string::npos && b < e, "drape eval-dress: --docs ", path.string(),
+            ": needs the lines '", kDocsBegin, "' and then '", kDocsEnd, "' around the table to replace");
+    return {s, b + std::string(kDocsBegin).size(), e};
+}
+
 void run_eval_dress(const EvalDressArgs& args) {
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    // Checked before the long run, used after it.
+    if (!args.docs.empty()) docs_block(args.docs);
     const auto selected = [&](const EvalBody& eb) {
         return args.bodies.empty() || std::find(args.bodies.begin(), args.bodies.end(), eb.name) != args.bodies.end();
     };
@@ -563,6 +588,19 @@ void run_eval_dress(const EvalDressArgs& args) {
     table << "\n" << usable << " of " << total << " cases usable; " << std::fixed << std::setprecision(1)
           << seconds_sum / std::max(total, 1) << " s per case on average (dress + drape).\n";
     write_text_atomically(dir / "table.md", table.str());
+    if (!args.docs.empty()) {
+        const auto [text, begin, end] = docs_block(args.docs);
+        write_text_atomically(args.docs, text.substr(0, begin) + "\n" + table.str() + text.substr(end));
+        if (fs::exists(dir / "contact_sheet.jpg")) {
+            const fs::path images = fs::path(args.docs).parent_path() / "images";
+            fs::create_directories(images);
+            std::ifstream jpg(dir / "contact_sheet.jpg", std::ios::binary);
+            std::ostringstream bytes;
+            bytes << jpg.rdbuf();
+            write_text_atomically(images / "dress_eval.jpg", bytes.str());
+        }
+        std::cout << "drape eval-dress: wrote the table into " << args.docs << "\n";
+    }
     write_json_file(dir / "results.json", {{"edge_cm", args.edge_cm},
                                            {"material", material_source},
                                            {"usable", usable},
@@ -584,6 +622,10 @@ void add_eval_dress_command(CLI::App& app) {
     cmd->add_option("--material", args->material, "fabric name or file (default gray-interlock)");
     cmd->add_flag("!--no-outfit", args->outfit, "skip the outfit (t-shirt over pants on the median woman)");
     cmd->add_option("--materials", args->materials_dir, "folder of fabric JSON files");
+    cmd->add_option("--docs", args->docs,
+                    "also replace the table between the lines '<!-- drape eval-dress: table begin -->' and "
+                    "'<!-- drape eval-dress: table end -->' of this Markdown file (e.g. docs/dressing.md) and "
+                    "write the contact sheet to images/dress_eval.jpg beside it");
     cmd->add_option("--out", args->out, "output folder")->required();
     cmd->callback([args] { run_eval_dress(*args); });
 }

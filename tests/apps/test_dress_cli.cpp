@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "cli_runner.hpp"
 #include "test_paths.hpp"
@@ -69,4 +71,42 @@ TEST_CASE("drape dress rejects bad input with exit code 2", "[apps][dress]") {
     INFO(r.out);
     CHECK(r.exit_code == 2);
     CHECK(r.out.find("'skirt'") != std::string::npos);
+}
+
+TEST_CASE("drape eval-dress --docs replaces the table block of a Markdown file", "[apps][dress]") {
+    DRAPE_REQUIRE_SHARED(material, "materials/gray-interlock.json");
+    const auto dir = drape::test::scratch_dir("cli_eval_dress_docs");
+    const auto docs = dir / "docs" / "dressing.md";
+    std::filesystem::create_directories(docs.parent_path());
+    {
+        std::ofstream out(docs);
+        out << "# Dressing\n\nbefore\n<!-- drape eval-dress: table begin -->\nold table\n"
+               "<!-- drape eval-dress: table end -->\nafter\n";
+    }
+    const std::string common = "eval-dress --garments skirt --poses a_pose --bodies female_p50 --no-outfit --materials \"" +
+                               material.parent_path().string() + "\" --out \"" + (dir / "out").string() + "\"";
+    auto r = run_drape(common + " --docs \"" + docs.string() + "\"");
+    INFO(r.out);
+    REQUIRE(r.exit_code == 0);
+    std::ifstream in(docs);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(text.find("old table") == std::string::npos);
+    CHECK(text.rfind("# Dressing\n\nbefore\n<!-- drape eval-dress: table begin -->\n| garment | body | pose", 0) == 0);
+    CHECK(text.find("| skirt | female_p50 | a_pose |") != std::string::npos);  // (renders: the median woman)
+    CHECK(text.find("1 cases usable;") != std::string::npos);
+    CHECK(text.find(".\n<!-- drape eval-dress: table end -->\nafter\n") != std::string::npos);
+    CHECK(std::filesystem::file_size(docs.parent_path() / "images" / "dress_eval.jpg") > 1000);
+    // A file without the markers is rejected before anything is simulated, and kept.
+    {
+        std::ofstream out(docs);
+        out << "no markers\n";
+    }
+    r = run_drape(common + " --docs \"" + docs.string() + "\"");
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("drape eval-dress: table begin") != std::string::npos);
+    std::ifstream again(docs);
+    const std::string kept((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>());
+    CHECK(kept == "no markers\n");
+    r = run_drape(common + " --docs \"" + (dir / "missing.md").string() + "\"");
+    CHECK(r.exit_code == 3);
 }
