@@ -809,6 +809,42 @@ TEST_CASE("drape diag: crossings over the drape of one case of the 60-case table
     }
 }
 
+// Diagnostic (hidden): the dressed state of one garment (DRAPE_DIAG_BODY, female_p50;
+// DRAPE_DIAG_GARMENT, pants|skirt|tshirt|dress; DRAPE_DIAG_POSE, a_pose; DRAPE_DIAG_EDGE in cm,
+// 1.5): the dressing report, then each crossing pair's panels and place.
+TEST_CASE("dressing diag: crossings of one dressed state", "[.diag]") {
+    const auto env = [](const char* k, const char* d) { const char* v = std::getenv(k); return std::string(v ? v : d); };
+    const std::string garment = env("DRAPE_DIAG_GARMENT", "pants"), pose_name = env("DRAPE_DIAG_POSE", "a_pose");
+    const std::string body_name = env("DRAPE_DIAG_BODY", "female_p50");
+    const double edge_cm = std::stod(env("DRAPE_DIAG_EDGE", "1.5"));
+    const EvalBody* eb = nullptr;
+    for (const EvalBody& e : kEvalBodies)
+        if (body_name == e.name) eb = &e;
+    REQUIRE(eb);
+    const ShapedAnsurBody b(*eb);
+    const body::NamedPose np = pose_name == "walking" ? body::NamedPose::walking
+                               : pose_name == "arms_down" ? body::NamedPose::arms_down : body::NamedPose::a_pose;
+    const body::Pose pose = clear_arms_from_trunk(b.model, b.shaped, body::named_pose(np));
+    const Pattern pattern = garment == "skirt"    ? make_circle_skirt(propose_skirt_sizing(b.m))
+                            : garment == "tshirt" ? make_tshirt(propose_tshirt_sizing(b.m))
+                            : garment == "dress"  ? make_dress(propose_dress_sizing(b.m))
+                                                  : make_pants(propose_pants_sizing(b.m));
+    MeshOptions mo;
+    mo.target_edge_cm = edge_cm;
+    GarmentMesh mesh;
+    REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
+    Eigen::MatrixX3d X;
+    const DressingSummary d = dress_garment(pattern, mesh, b.model, b.shaped, pose, DressingOptions{}, X);
+    std::printf("%s\n", d.brief_report().c_str());
+    std::vector<std::pair<int, int>> pairs;
+    drape::cloth::count_self_intersections(X, detail::sewn_faces(mesh), &pairs);
+    for (const auto& [f, g] : pairs) {
+        const Eigen::RowVector3d c = (X.row(mesh.cloth.faces(f, 0)) + X.row(mesh.cloth.faces(f, 1)) + X.row(mesh.cloth.faces(f, 2))) / 3;
+        std::printf("crossing %s / %s at %.3f %.3f %.3f\n", pattern.panels[size_t(mesh.panel_of_vertex(mesh.cloth.faces(f, 0)))].name.c_str(),
+                    pattern.panels[size_t(mesh.panel_of_vertex(mesh.cloth.faces(g, 0)))].name.c_str(), c.x(), c.y(), c.z());
+    }
+}
+
 TEST_CASE("sizing: sleeves and neckline fitted to the arms and neck of the five ANSUR bodies", "[garment][dressing]") {
     double slim_arm = 0, heavy_arm = 0, slim_neck = 0, heavy_neck = 0;
     for (const EvalBody& eb : kEvalBodies) {
