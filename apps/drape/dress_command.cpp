@@ -222,8 +222,8 @@ void run_dress_outfit(const DressArgs& args);
 
 // Default mesh edge of `drape dress`. Pants get a coarser one: at 1.5 cm the dressing of
 // their crotch (the push-out between the thighs) leaves crossings or vertices inside the
-// body on 3 of the 5 evaluation bodies (the median and 95th-percentile woman, the
-// 95th-percentile man), at 2.5 cm none (docs/dressing.md, Known problems).
+// body on 4 of the 5 evaluation bodies (all but the 5th-percentile woman), at 2.5 cm none
+// (docs/dressing.md, Known problems).
 constexpr double kDefaultEdgeCm = 1.5;
 constexpr double kPantsEdgeCm = 2.5;
 
