@@ -150,7 +150,7 @@ cv::Mat write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const
         g.UV = meshes[k]->uv;
         g.material.colour_srgb = colours[k % colours.size()];
         g.material.roughness = 0.85;
-        g.smooth_subdivisions = 2;  // the flat simulated triangles cut chords through the body
+        g.smooth_subdivisions = render::kSimulatedGarmentSubdivisions;  // flat, they cut chords through the body
         scene.meshes.push_back(std::move(g));
         floor_y = std::min(floor_y, Xs[k].col(1).minCoeff());
     }
@@ -580,6 +580,7 @@ void run_eval_dress(const EvalDressArgs& args) {
         }
     }
     // Contact sheet: a row per garment (and the outfit), a column per pose.
+    std::string contact_sheet_jpeg;
     if (!sheet_cells.empty()) {
         const int columns = int(poses.size()), w = 300, h = 450, caption = 24;
         const int rows = (int(sheet_cells.size()) + columns - 1) / columns;
@@ -593,7 +594,8 @@ void run_eval_dress(const EvalDressArgs& args) {
         }
         std::vector<unsigned char> jpeg;
         cv::imencode(".jpg", sheet, jpeg, {cv::IMWRITE_JPEG_QUALITY, 80});
-        write_text_atomically(dir / "contact_sheet.jpg", std::string(jpeg.begin(), jpeg.end()));
+        contact_sheet_jpeg.assign(jpeg.begin(), jpeg.end());
+        write_text_atomically(dir / "contact_sheet.jpg", contact_sheet_jpeg);
     }
     table << "\n" << usable << " of " << total << " cases usable; " << std::fixed << std::setprecision(1)
           << seconds_sum / std::max(total, 1) << " s per case on average (dress + drape).\n";
@@ -601,13 +603,10 @@ void run_eval_dress(const EvalDressArgs& args) {
     if (!args.docs.empty()) {
         const auto [text, begin, end] = docs_block(args.docs);
         write_text_atomically(args.docs, text.substr(0, begin) + "\n" + table.str() + text.substr(end));
-        if (fs::exists(dir / "contact_sheet.jpg")) {
+        if (!contact_sheet_jpeg.empty()) {
             const fs::path images = fs::path(args.docs).parent_path() / "images";
             fs::create_directories(images);
-            std::ifstream jpg(dir / "contact_sheet.jpg", std::ios::binary);
-            std::ostringstream bytes;
-            bytes << jpg.rdbuf();
-            write_text_atomically(images / "dress_eval.jpg", bytes.str());
+            write_text_atomically(images / "dress_eval.jpg", contact_sheet_jpeg);
         }
         std::cout << "drape eval-dress: wrote the table into " << args.docs << "\n";
     }

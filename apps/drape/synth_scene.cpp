@@ -38,8 +38,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
-// Levels of Phong tessellation of the draped garments in the renders (6 cm edges -> 1.5 cm).
-constexpr int kGarmentSmoothSubdivisions = 2;
 
 // splitmix64 (Steele, Lea, Flood 2014): a fully specified 64-bit generator, so scenes do
 // not depend on the standard library's distributions.
@@ -514,7 +512,7 @@ SynthSummary make_synth_scene(const SynthScene& scene, const SynthOptions& optio
         g.label = scene.garments[i].label;
         // Drawn on its Phong-tessellated surface: the simulated mesh's flat triangles cut
         // chords through the body (drape::render::phong_tessellate).
-        g.smooth_subdivisions = kGarmentSmoothSubdivisions;
+        g.smooth_subdivisions = render::kSimulatedGarmentSubdivisions;
         floor_y = std::min(floor_y, g.V.col(1).minCoeff());
         rs.meshes.push_back(std::move(g));
     }

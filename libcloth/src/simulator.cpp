@@ -414,20 +414,23 @@ struct Simulator::Impl {
     // against the body harder than the penalty holds), and without a contact it would stay
     // inside for good, with no force pushing it out.
     void update_obstacle_contacts(const Eigen::MatrixX3d& p) {
-        std::vector<double> previous(static_cast<std::size_t>(p.rows()), -std::numeric_limits<double>::infinity());
-        if (contacts.size() == previous.size())
-            for (std::size_t i = 0; i < previous.size(); ++i) previous[i] = contacts[i].distance;
-        contacts.clear();
-        if (!obstacle) return;
+        if (!obstacle) {
+            contacts.clear();
+            return;
+        }
         const double h = options.contact_thickness_m;
         query_radius = h + std::max(2 * h, 0.01);
-        contacts.resize(static_cast<std::size_t>(p.rows()));
+        // Each vertex's entry still holds its previous distance until it is overwritten.
+        const bool known = contacts.size() == static_cast<std::size_t>(p.rows());
+        if (!known) contacts.assign(static_cast<std::size_t>(p.rows()), VertexContact{});
         parallel_range(static_cast<int>(p.rows()), [&](int i) {
             VertexContact& c = contacts[static_cast<std::size_t>(i)];
+            const double previous = known ? c.distance : -std::numeric_limits<double>::infinity();
+            c = VertexContact{};
             c.vertex = i;
             if (pinned[static_cast<std::size_t>(i)]) return;
             ObstacleQuery q = obstacle->closest(p.row(i).transpose(), query_radius);
-            if (!q.found && previous[static_cast<std::size_t>(i)] < query_radius)
+            if (!q.found && previous < query_radius)
                 q = obstacle->closest(p.row(i).transpose(), kLostContactRadius);
             if (!q.found) return;
             c.point = q.point;

@@ -69,12 +69,17 @@ SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, const Ease& ea
 }
 
 namespace {
+// Throws unless `shaped` is a shape of `model` (`caller` names the function).
+void require_shape_of(const body::BodyModel& model, const body::ShapedBody& shaped, const char* caller) {
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3, caller,
+            ": the shaped body does not fit the model");
+}
+
 // The horizontal trunk sections (body::section_girth) from the spine joint down to the pelvis
 // joint, 1 cm apart, highest first: (height in the rest frame, girth), girth > 0.
 std::vector<std::pair<double, double>> waist_sections(const body::BodyModel& model, const body::ShapedBody& shaped,
                                                       const char* caller) {
-    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3, caller,
-            ": the shaped body does not fit the model");
+    require_shape_of(model, shaped, caller);
     const Eigen::Vector3d spine = shaped.joints.row(body::index(body::Joint::spine)).transpose();
     const Eigen::Vector3d pelvis = shaped.joints.row(body::index(body::Joint::pelvis)).transpose();
     const int steps = std::max(1, int(std::ceil((spine.y() - pelvis.y()) / 0.01)));
@@ -108,8 +113,7 @@ SkirtWaistband skirt_waist_fit(const body::BodyModel& model, const body::ShapedB
 }
 
 double upper_arm_girth(const body::BodyModel& model, const body::ShapedBody& shaped, double sleeve_length_cm) {
-    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
-            "upper_arm_girth: the shaped body does not fit the model");
+    require_shape_of(model, shaped, "upper_arm_girth");
     require(std::isfinite(sleeve_length_cm) && sleeve_length_cm > 0, "upper_arm_girth: sleeve length ",
             sleeve_length_cm, " cm must be positive");
     const Eigen::Vector3d shoulder = shaped.joints.row(body::index(body::Joint::right_shoulder)).transpose();
@@ -141,8 +145,7 @@ TShirtSizing fit_sleeves(TShirtSizing g, double arm_girth_m, double ease_cm) {
 }
 
 double neck_girth(const body::BodyModel& model, const body::ShapedBody& shaped) {
-    require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
-            "neck_girth: the shaped body does not fit the model");
+    require_shape_of(model, shaped, "neck_girth");
     const Eigen::Vector3d neck = shaped.joints.row(body::index(body::Joint::neck)).transpose();
     const Eigen::Vector3d head = shaped.joints.row(body::index(body::Joint::head)).transpose();
     require((head - neck).norm() > 0, "neck_girth: the neck and head joints coincide");

@@ -207,9 +207,10 @@ Eigen::Vector3d Renderer::Impl::shade(const RTCRayHit& rh, const Ray& ray, const
     const Eigen::Vector3d albedo =
         !m.material.texture.empty() ? texture_at(m.material, uv)
                                     : linear_colours[rh.hit.geomID][print_second_colour(m.material.print, uv) ? 1 : 0];
-    // Shadow and sky rays start from the point the smooth normals describe (Hanika 2021,
-    // "Hacking the shadow terminator"): P projected onto the three vertices' tangent planes,
-    // blended by the barycentrics, when that lies in front of the flat triangle. From the
+    // Shadow and sky rays start from the point the smooth normals describe (the shadow
+    // terminator correction of Hanika, Ray Tracing Gems II, 2021): P projected onto the three
+    // vertices' tangent planes, blended by the barycentrics, when that lies in front of the
+    // flat triangle. From the
     // flat triangle itself, a coarse surface lit at a grazing angle shadows itself in
     // triangle-shaped dark patches the smooth shading does not explain. Then an offset
     // against self-intersection, scaled to single-precision resolution at P.

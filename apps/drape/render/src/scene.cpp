@@ -4,7 +4,6 @@
 
 #include <Eigen/Geometry>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -141,29 +140,20 @@ Mesh phong_tessellate(const Mesh& mesh, int levels, double alpha) {
             N.push_back(m.N.row(i).transpose());
             if (uv) UV.push_back(m.UV.row(i).transpose());
         }
-        // Midpoints keyed by the ends' positions (not indices), so coincident edges agree.
-        std::map<std::array<double, 6>, Eigen::Vector3d> point_of;
+        // A midpoint is a symmetric function of its ends' positions and normals (IEEE sums
+        // commute), so coincident edges (the two sides of a seam) get the same point.
         std::map<std::pair<int, int>, int> index_of;
         const auto midpoint = [&](int a, int b) {
             const auto key = std::minmax(a, b);
             if (const auto it = index_of.find(key); it != index_of.end()) return it->second;
-            const Eigen::Vector3d& pa = V[static_cast<std::size_t>(key.first)];
-            const Eigen::Vector3d& pb = V[static_cast<std::size_t>(key.second)];
-            std::array<double, 6> pk{pa.x(), pa.y(), pa.z(), pb.x(), pb.y(), pb.z()};
-            if (std::lexicographical_compare(pk.begin() + 3, pk.end(), pk.begin(), pk.begin() + 3))
-                pk = {pb.x(), pb.y(), pb.z(), pa.x(), pa.y(), pa.z()};
-            auto it = point_of.find(pk);
-            if (it == point_of.end()) {
-                const Eigen::Vector3d& na = N[static_cast<std::size_t>(key.first)];
-                const Eigen::Vector3d& nb = N[static_cast<std::size_t>(key.second)];
-                const Eigen::Vector3d p = 0.5 * (pa + pb);
-                const Eigen::Vector3d pia = p - (p - pa).dot(na) * na, pib = p - (p - pb).dot(nb) * nb;
-                it = point_of.emplace(pk, (1 - alpha) * p + alpha * 0.5 * (pia + pib)).first;
-            }
-            V.push_back(it->second);
-            const Eigen::Vector3d n = N[static_cast<std::size_t>(key.first)] + N[static_cast<std::size_t>(key.second)];
-            N.push_back(n.norm() > 1e-12 ? Eigen::Vector3d(n.normalized()) : N[static_cast<std::size_t>(key.first)]);
-            if (uv) UV.push_back(0.5 * (UV[static_cast<std::size_t>(key.first)] + UV[static_cast<std::size_t>(key.second)]));
+            const Eigen::Vector3d pa = V[static_cast<std::size_t>(a)], pb = V[static_cast<std::size_t>(b)];
+            const Eigen::Vector3d na = N[static_cast<std::size_t>(a)], nb = N[static_cast<std::size_t>(b)];
+            const Eigen::Vector3d p = 0.5 * (pa + pb);
+            const Eigen::Vector3d pia = p - (p - pa).dot(na) * na, pib = p - (p - pb).dot(nb) * nb;
+            V.push_back((1 - alpha) * p + alpha * 0.5 * (pia + pib));
+            const Eigen::Vector3d n = na + nb;
+            N.push_back(n.norm() > 1e-12 ? Eigen::Vector3d(n.normalized()) : na);
+            if (uv) UV.push_back(0.5 * (UV[static_cast<std::size_t>(a)] + UV[static_cast<std::size_t>(b)]));
             return index_of[key] = static_cast<int>(V.size()) - 1;
         };
         Eigen::MatrixXi F(4 * m.F.rows(), 3);

@@ -29,13 +29,17 @@ struct Mesh {
 /// Phong tessellation (Boubekeur & Alexa 2008) repeated `levels` times: every edge is split at
 /// its midpoint p, moved to (1 − α) p + α (π_a(p) + π_b(p)) / 2 with π_k the projection onto
 /// the tangent plane of end k (its vertex normal), so a mesh of points on a curved surface
-/// is refined towards that surface (a chord over a circle of radius r with ends 37° apart
-/// ends within 2 % of r at α = 0.75, instead of 20 % inside it). Each triangle becomes 4^levels;
+/// is refined towards that surface (the midpoint of a chord over a circle of radius r with
+/// ends 37° apart lands 2 % outside r at α = 0.75 instead of 5 % inside). Each triangle becomes 4^levels;
 /// normals of new vertices are the normalised mean of the edge's ends; UVs are interpolated.
 /// Vertices at exactly the same position (the two sides of a seam) share their normal and
 /// give identical midpoints, so no crack opens between them. Empty N: area-weighted
 /// normals of the mesh with coincident vertices merged. \pre levels >= 0, α in [0, 1].
 Mesh phong_tessellate(const Mesh& mesh, int levels, double alpha = 0.75);
+
+/// Levels of Phong tessellation the apps draw simulated garments with (their 4–6 cm
+/// triangles as 1–1.5 cm ones): `drape synth`, `drape dress`, `drape eval-dress`.
+constexpr int kSimulatedGarmentSubdivisions = 2;
 
 /// A horizontal floor under the meshes (infinite for the camera: 40 m square).
 struct Floor {
