@@ -214,12 +214,22 @@ nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv:
     return j;
 }
 
+/// The wrinkle-density comparisons of the scale check: P(x0.5) and P(x2) against P(x1) for
+/// each hand-labelled garment measured at all three scales.
+struct ScaleCheckTotals {
+    std::vector<double> ratios;  ///< P(xs) / P(x1) where P(x1) > 0
+    int comparisons = 0;         ///< ratios + comparisons with P(x1) = 0
+    int within = 0;              ///< ratios within +-20 % + both without fold (P = 0 = P)
+    int both_without_fold = 0;   ///< P(xs) = P(x1) = 0: no fold at either scale
+    int not_measured = 0;        ///< garments too small for P at some scale
+};
+
 /// Wrinkle density of each hand-labelled garment at scales 0.5, 1, 2.
 nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision::Joints& joints,
-                           const vision::GarmentOptions& garment_options, std::vector<double>& ratios) {
+                           const vision::GarmentOptions& garment_options, ScaleCheckTotals& totals) {
     const LabelTable& table = LabelTable::fashionista();
     nlohmann::json j = nlohmann::json::object();
-    std::map<int, std::vector<double>> densities, counts;
+    std::map<int, std::vector<vision::WrinkleSummary>> runs;
     for (double s : {1.0, 0.5, 2.0}) {
         vision::Segmentation seg;
         cv::resize(photo, seg.labels, cv::Size(), s, s, s < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
@@ -227,20 +237,30 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
         cv::resize(gt, seg.labels, img.size(), 0, 0, cv::INTER_NEAREST);
         seg.occlusion = vision::occlusion_mask(seg.labels, table);
         for (const auto& g : vision::describe_garments(img, seg, joints.scaled(s), table, garment_options))
-        {
-            densities[g.label_id].push_back(g.wrinkles.density_per_m2);
-            counts[g.label_id].push_back(g.wrinkles.fold_count);
-        }
+            runs[g.label_id].push_back(g.wrinkles);
     }
-    for (const auto& [id, d] : densities) {
-        if (d.size() != 3) continue;
-        const auto& n = counts[id];
-        j[table.name(id)] = {{"P_x1", d[0]}, {"P_x0.5", d[1]}, {"P_x2", d[2]},
-                             {"folds_x1", n[0]}, {"folds_x0.5", n[1]}, {"folds_x2", n[2]}};
-        if (d[0] > 0) {
-            ratios.push_back(d[1] / d[0]);
-            ratios.push_back(d[2] / d[0]);
+    for (const auto& [id, w] : runs) {
+        if (w.size() != 3) continue;
+        nlohmann::json e = {{"P_x1", w[0].density_per_m2}, {"P_x0.5", w[1].density_per_m2},
+                            {"P_x2", w[2].density_per_m2}, {"folds_x1", w[0].fold_count},
+                            {"folds_x0.5", w[1].fold_count}, {"folds_x2", w[2].fold_count}};
+        if (!w[0].usable() || !w[1].usable() || !w[2].usable()) {
+            e["not_measured"] = "garment too small for P at some scale";
+            totals.not_measured += 1;
+        } else {
+            for (int k = 1; k < 3; ++k) {
+                const double d0 = w[0].density_per_m2, dk = w[size_t(k)].density_per_m2;
+                totals.comparisons += 1;
+                if (d0 > 0) {
+                    totals.ratios.push_back(dk / d0);
+                    totals.within += dk / d0 >= 0.8 && dk / d0 <= 1.2;
+                } else if (dk == 0) {
+                    totals.within += 1;
+                    totals.both_without_fold += 1;
+                }
+            }
         }
+        j[table.name(id)] = e;
     }
     return j;
 }
@@ -264,7 +284,7 @@ void run_eval(const EvalArgs& args) {
     if (args.mode == "auto" || args.mode == "both") modes.push_back("auto");
     const LabelTable& table = LabelTable::fashionista();
     std::map<std::string, ModeTotals> totals;
-    std::vector<double> ratios;
+    ScaleCheckTotals scale_totals;
     nlohmann::json per_photo = nlohmann::json::array();
     for (const auto& [name, category] : photos) {
         const cv::Mat photo = vision::load_image(dir / "images" / (name + ".jpg"));
@@ -288,7 +308,7 @@ void run_eval(const EvalArgs& args) {
                 std::cout << " " << g["true_type"].get<std::string>() << "->"
                           << g["predicted_type"].get<std::string>();
         }
-        if (args.scale_check) pj["wrinkle_scale_check"] = scale_check(photo, gt, joints, args.garment, ratios);
+        if (args.scale_check) pj["wrinkle_scale_check"] = scale_check(photo, gt, joints, args.garment, scale_totals);
         std::cout << "\n";
         per_photo.push_back(pj);
     }
@@ -316,17 +336,20 @@ void run_eval(const EvalArgs& args) {
                   << " s/photo (max " << t.seconds_max << " s)\n";
     }
     if (args.scale_check) {
-        int within = 0;
+        const auto& t = scale_totals;
         double worst = 1.0;
-        for (double r : ratios) {
-            within += (r >= 0.8 && r <= 1.2);
-            if (std::abs(std::log(r)) > std::abs(std::log(worst))) worst = r;
-        }
-        result["summary"]["wrinkle_scale_check"] = {{"ratios", ratios.size()},
-                                                    {"within_20_percent", within},
+        for (double r : t.ratios)
+            if (std::abs(std::log(std::max(r, 1e-9))) > std::abs(std::log(std::max(worst, 1e-9)))) worst = r;
+        result["summary"]["wrinkle_scale_check"] = {{"comparisons", t.comparisons},
+                                                    {"within_20_percent", t.within},
+                                                    {"ratios", t.ratios.size()},
+                                                    {"both_without_fold", t.both_without_fold},
+                                                    {"garments_not_measured", t.not_measured},
                                                     {"worst_ratio", worst}};
-        std::cout << "wrinkle density x0.5 / x2 vs x1: " << within << " of " << ratios.size()
-                  << " ratios within +-20 %, worst " << worst << "\n";
+        std::cout << "wrinkle density x0.5 / x2 vs x1: " << t.within << " of " << t.comparisons
+                  << " comparisons within +-20 % (" << t.ratios.size() << " ratios, worst " << worst << "; "
+                  << t.both_without_fold << " with no fold at either scale); " << t.not_measured
+                  << " garment(s) too small for P\n";
     }
     write_json_file(args.out, result);
 }
@@ -374,12 +397,15 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--resolution-ensemble", w.resolution_ensemble,
                     "WrinkleOptions::resolution_ensemble (for tuning)");
     cmd->add_option("--phase-ensemble", w.phase_ensemble, "WrinkleOptions::phase_ensemble (for tuning)");
+    cmd->add_option("--wrinkle-threads", w.threads, "WrinkleOptions::threads: threads of the fold detector (0 = all cores)");
     const std::pair<const char*, double*> wrinkle_tuning[] = {
         {"ridge-threshold", &w.ridge_threshold},
         {"working-body-height", &w.working_body_height_px},
         {"min-edge-fraction", &w.min_edge_fraction},
         {"full-fold-fraction", &w.full_fold_fraction},
-        {"source-blur", &w.source_blur_px}};
+        {"source-blur", &w.source_blur_px},
+        {"min-fold-count", &w.min_fold_count},
+        {"min-garment-area-fraction", &w.min_garment_area_fraction}};
     add_tuning_options(*cmd, "WrinkleOptions", wrinkle_tuning);
     cmd->callback([args] {
         std::string why;

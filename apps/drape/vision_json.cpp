@@ -76,8 +76,13 @@ nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
             features[name] = {{"px", v.first}, {"normalised", v.second}};
         e["features"] = features;
         e["cues"] = cues_json(g.cues);
-        e["wrinkle_density_per_m2"] = number_or_null(g.wrinkles.density_per_m2);
+        // null when P was not measured (garment too small, see the report); 0 when measured
+        // and no fold reached the detection limit.
+        e["wrinkle_density_per_m2"] =
+            g.wrinkles.usable() ? number_or_null(g.wrinkles.density_per_m2) : nlohmann::json();
         e["wrinkles"] = {{"usable", g.wrinkles.usable()},
+                         {"folds_detected", g.wrinkles.folds_detected},
+                         {"fold_count", g.wrinkles.fold_count},
                          {"folds", g.wrinkles.folds},
                          {"edges", g.wrinkles.edges_merged},
                          {"garment_area_m2", g.wrinkles.garment_area_m2},

@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 #include <opencv2/imgproc.hpp>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -40,6 +42,9 @@ bool WrinkleOptions::is_valid(std::string* why) const {
     if (!(source_blur_px >= 0)) return fail("source_blur_px must be >= 0");
     if (phase_ensemble != 1 && phase_ensemble != 2 && phase_ensemble != 4)
         return fail("phase_ensemble must be 1, 2 or 4");
+    if (threads < 0) return fail("threads must be >= 0");
+    if (!(min_garment_area_fraction >= 0)) return fail("min_garment_area_fraction must be >= 0");
+    if (!(min_fold_count >= 0)) return fail("min_fold_count must be >= 0");
     return true;
 }
 
@@ -220,78 +225,11 @@ GarmentCrop crop_garment(const cv::Mat& image, const cv::Mat& mask, const cv::Ma
     return c;
 }
 
-/// One detection with the body resampled to Hw px: sets the edge and fold counts of `s`.
-void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, const WrinkleOptions& o,
-               WrinkleSummary& s, std::vector<Fold>* folds) {
-    // The crop is resampled so that the body is Hw px tall: every filter then sees the
-    // same pixel scale whatever the photo's resolution (discrete derivatives bias small
-    // sigmas).
-    const cv::Rect& roi = crop.roi;
-    const double f = Hw / H;
-    const cv::Size work_size(std::max(3, int(std::lround(roi.width * f))),
-                             std::max(3, int(std::lround(roi.height * f))));
-    cv::Mat gray;
-    cv::resize(crop.gray, gray, work_size, 0, 0, f < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
-    if (phase.squaredNorm() > 0) {
-        const cv::Matx23d shift(1, 0, phase.x(), 0, 1, phase.y());
-        cv::warpAffine(gray, gray, shift, gray.size(), cv::INTER_CUBIC, cv::BORDER_REPLICATE);
-    }
-    cv::Mat mask_w, occ_w;
-    cv::resize(crop.mask, mask_w, work_size, 0, 0, cv::INTER_NEAREST);
-    if (!crop.occlusion.empty()) cv::resize(crop.occlusion, occ_w, work_size, 0, 0, cv::INTER_NEAREST);
-    const Vec offset(roi.x, roi.y);
-    // Multi-scale Hessian: scale-normalised sigma^2 * eigenvalues; keep the strongest.
-    cv::Mat resp_bright = cv::Mat::zeros(gray.size(), CV_32F), resp_dark = resp_bright.clone();
-    cv::Mat nx_b(gray.size(), CV_32F, cv::Scalar(0)), ny_b = nx_b.clone(), nx_d = nx_b.clone(),
-            ny_d = nx_b.clone();
-    for (double sf : o.scale_fractions) {
-        const double sigma = std::max(0.7, sf * Hw);
-        // The photo's own blur, in working pixels, is part of sigma: a photo with the body
-        // 250 px tall is upsampled twice as much as one with 500 px and carries twice the
-        // blur, so adding the full sigma on top made its folds look coarser and weaker.
-        const double sigma_src = o.source_blur_px * f;
-        const double sigma_add = std::sqrt(std::max(0.49, sigma * sigma - sigma_src * sigma_src));
-        cv::Mat g, dxx, dyy, dxy;
-        cv::GaussianBlur(gray, g, cv::Size(), sigma_add, sigma_add, cv::BORDER_REPLICATE);
-        cv::Sobel(g, dxx, CV_32F, 2, 0, 3);
-        cv::Sobel(g, dyy, CV_32F, 0, 2, 3);
-        cv::Sobel(g, dxy, CV_32F, 1, 1, 3);
-        const float s2 = float(sigma * sigma);
-        for (int y = 0; y < g.rows; ++y)
-            for (int x = 0; x < g.cols; ++x) {
-                const float a = dxx.at<float>(y, x), b = dyy.at<float>(y, x),
-                            c = dxy.at<float>(y, x);
-                const float tr = 0.5f * (a + b), det = std::sqrt(0.25f * (a - b) * (a - b) + c * c);
-                const float l_max = tr + det, l_min = tr - det;
-                // Eigenvector of l: (c, l - a) or (l - b, c).
-                auto normal = [&](float l, float& ex, float& ey) {
-                    ex = c; ey = l - a;
-                    if (std::abs(ex) + std::abs(ey) < 1e-12f) { ex = l - b; ey = c; }
-                    const float nn = std::sqrt(ex * ex + ey * ey);
-                    if (nn < 1e-12f) { ex = 1; ey = 0; } else { ex /= nn; ey /= nn; }
-                };
-                const float rb = s2 * std::max(0.f, -l_min), rd = s2 * std::max(0.f, l_max);
-                if (rb > resp_bright.at<float>(y, x)) {
-                    resp_bright.at<float>(y, x) = rb;
-                    normal(l_min, nx_b.at<float>(y, x), ny_b.at<float>(y, x));
-                }
-                if (rd > resp_dark.at<float>(y, x)) {
-                    resp_dark.at<float>(y, x) = rd;
-                    normal(l_max, nx_d.at<float>(y, x), ny_d.at<float>(y, x));
-                }
-            }
-    }
-    // Valid area: the garment without a band along its border and along occlusions.
-    cv::Mat valid = mask_w.clone();
-    const int band = std::max(1, int(std::lround(o.border_fraction * Hw)));
-    cv::erode(valid, valid, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * band + 1, 2 * band + 1}),
-              {-1, -1}, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
-    if (!occ_w.empty()) {
-        cv::Mat occ;
-        cv::dilate(occ_w, occ, cv::getStructuringElement(cv::MORPH_ELLIPSE,
-                   {2 * band + 1, 2 * band + 1}));
-        valid &= ~occ;
-    }
+/// The folds of one detection from its ridge responses: sets the edge and fold counts of `s`.
+void count_folds(const cv::Mat& resp_bright, const cv::Mat& resp_dark, const cv::Mat& nx_b, const cv::Mat& ny_b,
+                 const cv::Mat& nx_d, const cv::Mat& ny_d, const cv::Mat& valid, double Hw,
+                 double f, const Vec& offset, const WrinkleOptions& o, WrinkleSummary& s,
+                 std::vector<Fold>* folds) {
     const double max_turn = o.max_curvature_fraction * 0.25;  // radians of turn
     const double min_len = o.min_edge_fraction * Hw;
     std::vector<Edge> edges;
@@ -388,6 +326,93 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, c
     }
 }
 
+/// One detection with the body resampled to Hw px: sets the edge and fold counts of `s`.
+void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, const WrinkleOptions& o,
+               WrinkleSummary& s, std::vector<Fold>* folds) {
+    // The crop is resampled so that the body is Hw px tall: every filter then sees the
+    // same pixel scale whatever the photo's resolution (discrete derivatives bias small
+    // sigmas).
+    const cv::Rect& roi = crop.roi;
+    const double f = Hw / H;
+    const cv::Size work_size(std::max(3, int(std::lround(roi.width * f))),
+                             std::max(3, int(std::lround(roi.height * f))));
+    cv::Mat gray;
+    cv::resize(crop.gray, gray, work_size, 0, 0, f < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+    if (phase.squaredNorm() > 0) {
+        const cv::Matx23d shift(1, 0, phase.x(), 0, 1, phase.y());
+        cv::warpAffine(gray, gray, shift, gray.size(), cv::INTER_CUBIC, cv::BORDER_REPLICATE);
+    }
+    cv::Mat mask_w, occ_w;
+    cv::resize(crop.mask, mask_w, work_size, 0, 0, cv::INTER_NEAREST);
+    if (!crop.occlusion.empty()) cv::resize(crop.occlusion, occ_w, work_size, 0, 0, cv::INTER_NEAREST);
+    const Vec offset(roi.x, roi.y);
+    // Valid area: the garment without a band along its border and along occlusions.
+    cv::Mat valid = mask_w.clone();
+    const int band = std::max(1, int(std::lround(o.border_fraction * Hw)));
+    cv::erode(valid, valid, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * band + 1, 2 * band + 1}),
+              {-1, -1}, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+    if (!occ_w.empty()) {
+        cv::Mat occ;
+        cv::dilate(occ_w, occ, cv::getStructuringElement(cv::MORPH_ELLIPSE,
+                   {2 * band + 1, 2 * band + 1}));
+        valid &= ~occ;
+    }
+    // Multi-scale Hessian: scale-normalised sigma^2 * eigenvalues; keep the strongest.
+    // Responses are needed on the valid area and its 8-neighbours (non-maximum
+    // suppression reads them), the normals only where a response can pass the lowest
+    // hysteresis threshold.
+    cv::Mat need;
+    cv::dilate(valid, need, cv::Mat());
+    const float floor_resp = float(0.5 * o.ridge_threshold);
+    cv::Mat resp_bright = cv::Mat::zeros(gray.size(), CV_32F), resp_dark = resp_bright.clone();
+    cv::Mat nx_b(gray.size(), CV_32F, cv::Scalar(0)), ny_b = nx_b.clone(), nx_d = nx_b.clone(),
+            ny_d = nx_b.clone();
+    for (double sf : o.scale_fractions) {
+        const double sigma = std::max(0.7, sf * Hw);
+        // The photo's own blur, in working pixels, is part of sigma: a photo with the body
+        // 250 px tall is upsampled twice as much as one with 500 px and carries twice the
+        // blur, so adding the full sigma on top made its folds look coarser and weaker.
+        const double sigma_src = o.source_blur_px * f;
+        const double sigma_add = std::sqrt(std::max(0.49, sigma * sigma - sigma_src * sigma_src));
+        cv::Mat g, dxx, dyy, dxy;
+        cv::GaussianBlur(gray, g, cv::Size(), sigma_add, sigma_add, cv::BORDER_REPLICATE);
+        cv::Sobel(g, dxx, CV_32F, 2, 0, 3);
+        cv::Sobel(g, dyy, CV_32F, 0, 2, 3);
+        cv::Sobel(g, dxy, CV_32F, 1, 1, 3);
+        const float s2 = float(sigma * sigma);
+        // Eigenvector of l: (c, l - a) or (l - b, c).
+        auto normal = [](float a, float b, float c, float l, float& ex, float& ey) {
+            ex = c; ey = l - a;
+            if (std::abs(ex) + std::abs(ey) < 1e-12f) { ex = l - b; ey = c; }
+            const float nn = std::sqrt(ex * ex + ey * ey);
+            if (nn < 1e-12f) { ex = 1; ey = 0; } else { ex /= nn; ey /= nn; }
+        };
+        for (int y = 0; y < g.rows; ++y) {
+            const std::uint8_t* nd = need.ptr<std::uint8_t>(y);
+            const float *pa = dxx.ptr<float>(y), *pb = dyy.ptr<float>(y), *pc = dxy.ptr<float>(y);
+            float *rbp = resp_bright.ptr<float>(y), *rdp = resp_dark.ptr<float>(y);
+            float *nxb = nx_b.ptr<float>(y), *nyb = ny_b.ptr<float>(y), *nxd = nx_d.ptr<float>(y),
+                  *nyd = ny_d.ptr<float>(y);
+            for (int x = 0; x < g.cols; ++x) {
+                if (!nd[x]) continue;
+                const float a = pa[x], b = pb[x], c = pc[x];
+                const float tr = 0.5f * (a + b), det = std::sqrt(0.25f * (a - b) * (a - b) + c * c);
+                const float l_max = tr + det, l_min = tr - det;
+                const float rb = s2 * std::max(0.f, -l_min), rd = s2 * std::max(0.f, l_max);
+                if (rb > rbp[x]) {
+                    rbp[x] = rb;
+                    if (rb >= floor_resp) normal(a, b, c, l_min, nxb[x], nyb[x]);
+                }
+                if (rd > rdp[x]) {
+                    rdp[x] = rd;
+                    if (rd >= floor_resp) normal(a, b, c, l_max, nxd[x], nyd[x]);
+                }
+            }
+        }
+    }
+    count_folds(resp_bright, resp_dark, nx_b, ny_b, nx_d, ny_d, valid, Hw, f, offset, o, s, folds);
+}
+
 }  // namespace
 
 WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion,
@@ -412,9 +437,13 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
         s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return s;
     };
-    if (s.garment_area_px < 0.0005 * H * H) {
+    if (s.garment_area_px < std::max(0.0005, o.min_garment_area_fraction) * H * H) {
         s.termination = WrinkleTermination::garment_too_small;
-        s.message = "garment covers fewer than 0.05 % of body height squared";
+        std::ostringstream m;
+        m << "garment covers " << std::setprecision(2) << 100 * s.garment_area_px / (H * H)
+          << " % of body height squared, below the " << 100 * std::max(0.0005, o.min_garment_area_fraction)
+          << " % that P needs";
+        s.message = m.str();
         return done();
     }
     // P is the mean fold count of detections at working body heights spread around
@@ -427,23 +456,41 @@ WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const 
     const int n = o.resolution_ensemble;
     const GarmentCrop crop = crop_garment(image, mask, occlusion, H, o);
     const Vec phases[4] = {{0, 0}, {0.5, 0.5}, {0.5, 0}, {0, 0.5}};
+    // The detections are independent: they run in parallel (WrinkleOptions::threads) and
+    // are summed in a fixed order, so P does not depend on the thread count.
+    const int total = n * o.phase_ensemble;
+    const int nominal = (n / 2) * o.phase_ensemble;  // k = n / 2 (t = 0 when n is odd), phase 0
+    std::vector<WrinkleSummary> runs(static_cast<size_t>(total));
+    auto run = [&](int i) {
+        const int k = i / o.phase_ensemble, j = i % o.phase_ensemble;
+        const double t = n > 1 ? 2.0 * k / (n - 1) - 1.0 : 0.0;
+        detect_at(crop, H, o.working_body_height_px * std::pow(1.15, t), phases[j], o,
+                  runs[static_cast<size_t>(i)], i == nominal ? folds : nullptr);
+    };
+    if (o.threads == 1 || total == 1) {
+        for (int i = 0; i < total; ++i) run(i);
+    } else {
+        tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+        arena.execute([&] { tbb::parallel_for(0, total, run); });
+    }
     double count_sum = 0;
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < o.phase_ensemble; ++j) {
-            const double t = n > 1 ? 2.0 * k / (n - 1) - 1.0 : 0.0;
-            WrinkleSummary sk;
-            const bool nominal = k == n / 2 && j == 0;  // the middle one (t = 0 when n is odd)
-            detect_at(crop, H, o.working_body_height_px * std::pow(1.15, t), phases[j], o, sk,
-                      nominal ? folds : nullptr);
-            count_sum += sk.fold_count;
-            if (nominal) {
-                s.edges_detected = sk.edges_detected;
-                s.edges_merged = sk.edges_merged;
-                s.folds = sk.folds;
-            }
-        }
+    for (const auto& r : runs) count_sum += r.fold_count;
+    s.edges_detected = runs[static_cast<size_t>(nominal)].edges_detected;
+    s.edges_merged = runs[static_cast<size_t>(nominal)].edges_merged;
+    s.folds = runs[static_cast<size_t>(nominal)].folds;
     s.fold_count = count_sum / (n * o.phase_ensemble);
-    s.density_per_m2 = s.garment_area_m2 > 0 ? s.fold_count / s.garment_area_m2 : 0.0;
+    // Below the detection limit the garment has no fold: the few grids that pair two short
+    // edges on a plain garment are noise, and their ratio across scales is meaningless.
+    s.folds_detected = s.fold_count >= o.min_fold_count;
+    s.density_per_m2 = s.folds_detected && s.garment_area_m2 > 0 ? s.fold_count / s.garment_area_m2 : 0.0;
+    if (!s.folds_detected) {
+        s.folds = 0;
+        if (folds) folds->clear();
+        std::ostringstream m;
+        m << "no fold: " << std::setprecision(2) << s.fold_count << " full-length folds, below the detection limit "
+          << o.min_fold_count;
+        s.message = m.str();
+    }
     s.termination = WrinkleTermination::ok;
     return done();
 }

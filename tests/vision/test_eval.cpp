@@ -11,6 +11,7 @@
 #include "test_paths.hpp"
 
 #include <catch2/catch.hpp>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -107,31 +108,41 @@ TEST_CASE("a weaker background distance stops a garment leaking into the backgro
 namespace {
 
 /// Wrinkles of the hand-labelled garment `class_name` of `p` on the photo resized by `s`.
-WrinkleSummary labelled_wrinkles(const Photo& p, const std::string& class_name, double s) {
+WrinkleSummary labelled_wrinkles(const Photo& p, const std::string& class_name, double s,
+                                 const WrinkleOptions& options = {}) {
     cv::Mat img, lab;
     cv::resize(p.image, img, cv::Size(), s, s, s < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
     cv::resize(p.labels, lab, img.size(), 0, 0, cv::INTER_NEAREST);
     const LabelTable& table = LabelTable::fashionista();
     const cv::Mat mask = lab == table.id(class_name);
-    return detect_wrinkles(img, mask, occlusion_mask(lab, table), p.joints.scaled(s), {}, nullptr);
+    return detect_wrinkles(img, mask, occlusion_mask(lab, table), p.joints.scaled(s), options, nullptr);
+}
+
+/// Checks that P of the hand-labelled garment `class_name` of photo `name` at x0.5 and x2
+/// is within 20 % of P at x1, after `check_x1` on the x1 result. False (and a warning) when
+/// the shared photos are absent.
+bool check_resized_wrinkles(const char* name, const char* class_name,
+                            const std::function<void(const WrinkleSummary&)>& check_x1) {
+    Photo p;
+    if (!load_photo(name, p)) {
+        WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
+        return false;
+    }
+    const WrinkleSummary d1 = labelled_wrinkles(p, class_name, 1.0);
+    INFO(name << " " << class_name << ": " << d1.brief_report());
+    check_x1(d1);
+    for (double s : {0.5, 2.0}) {
+        const WrinkleSummary ds = labelled_wrinkles(p, class_name, s);
+        INFO("scale " << s << ": " << ds.brief_report());
+        CHECK(ds.density_per_m2 / d1.density_per_m2 == Approx(1.0).margin(0.2));
+    }
+    return true;
 }
 
 }  // namespace
 
 TEST_CASE("wrinkle density of a real garment is stable under resizing", "[vision][photos][wrinkles]") {
-    Photo p;
-    if (!load_photo("fashionista_002149", p)) {
-        WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
-        return;
-    }
-    const WrinkleSummary d1 = labelled_wrinkles(p, "skirt", 1.0);
-    INFO(d1.brief_report());
-    REQUIRE(d1.folds >= 3);
-    for (double s : {0.5, 2.0}) {
-        const WrinkleSummary ds = labelled_wrinkles(p, "skirt", s);
-        INFO("scale " << s << ": " << ds.brief_report());
-        CHECK(ds.density_per_m2 / d1.density_per_m2 == Approx(1.0).margin(0.2));
-    }
+    check_resized_wrinkles("fashionista_002149", "skirt", [](const WrinkleSummary& d1) { REQUIRE(d1.folds >= 3); });
 }
 
 TEST_CASE("wrinkle density averaged over working resolutions is stable under resizing",
@@ -140,21 +151,67 @@ TEST_CASE("wrinkle density averaged over working resolutions is stable under res
     // (ratios 0.78 / 0.75, 0.76 / 0.91, 0.75 / 0.79 in the 30-photo run of 2026-11-24).
     const std::pair<const char*, const char*> garments[] = {
         {"fashionista_017182", "dress"}, {"fashionista_003792", "blouse"}, {"fashionista_022589", "top"}};
-    for (const auto& [name, class_name] : garments) {
-        Photo p;
-        if (!load_photo(name, p)) {
-            WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
+    for (const auto& [name, class_name] : garments)
+        if (!check_resized_wrinkles(name, class_name, [](const WrinkleSummary& d1) { REQUIRE(d1.density_per_m2 > 5); }))
             return;
-        }
-        const WrinkleSummary d1 = labelled_wrinkles(p, class_name, 1.0);
-        INFO(name << " " << class_name << ": " << d1.brief_report());
-        REQUIRE(d1.density_per_m2 > 5);
-        for (double s : {0.5, 2.0}) {
-            const WrinkleSummary ds = labelled_wrinkles(p, class_name, s);
-            INFO("scale " << s << ": " << ds.brief_report());
-            CHECK(ds.density_per_m2 / d1.density_per_m2 == Approx(1.0).margin(0.2));
-        }
+}
+
+TEST_CASE("garments with about one fold keep their wrinkle density under resizing",
+          "[vision][photos][wrinkles]") {
+    // 002149's white t-shirt (0.75 full-length folds) and 007094's shorts (1.33): with the
+    // earlier ensemble of 5 resolutions x 2 phases their ratios were 0.68 / 0.68 and 0.78 /
+    // 0.79 (one detection counts 0.3-1.9 folds on them); 10 x 4 detections average that out.
+    const std::pair<const char*, const char*> garments[] = {{"fashionista_002149", "t-shirt"},
+                                                            {"fashionista_007094", "shorts"}};
+    for (const auto& [name, class_name] : garments)
+        if (!check_resized_wrinkles(name, class_name, [](const WrinkleSummary& d1) {
+                REQUIRE(d1.folds_detected);
+                REQUIRE(d1.fold_count < 2);
+            }))
+            return;
+}
+
+TEST_CASE("a plain garment has no fold at any resolution, a palm-sized patch no P",
+          "[vision][photos][wrinkles]") {
+    Photo p, q;
+    if (!load_photo("fashionista_013932", p) || !load_photo("fashionista_012392", q)) {
+        WARN("skipped: ../shared/data/photos not found (set DRAPE_SHARED_DIR)");
+        return;
     }
+    // 013932's over-exposed white tank top shows no fold; a few grids of the ensemble still
+    // pair two short edges (0.03-0.12 full-length folds). Below the detection limit P is 0
+    // at every scale; counted, those pairs give ratios of 1.7 and 0.4.
+    WrinkleOptions counted;
+    counted.min_fold_count = 0;
+    std::vector<double> raw;
+    for (double s : {1.0, 0.5, 2.0}) {
+        const WrinkleSummary w = labelled_wrinkles(p, "top", s);
+        INFO("scale " << s << ": " << w.brief_report());
+        REQUIRE(w.usable());
+        CHECK_FALSE(w.folds_detected);
+        CHECK(w.density_per_m2 == 0);
+        CHECK(w.folds == 0);
+        CHECK(w.fold_count < WrinkleOptions{}.min_fold_count);
+        raw.push_back(labelled_wrinkles(p, "top", s, counted).density_per_m2);
+    }
+    INFO("P without the detection limit: " << raw[0] << ", x0.5 " << raw[1] << ", x2 " << raw[2]);
+    REQUIRE(raw[0] > 0);
+    CHECK((std::abs(raw[1] / raw[0] - 1) > 0.2 || std::abs(raw[2] / raw[0] - 1) > 0.2));
+    // 012392's lace camisole, seen between the flaps of an open shirt, covers 0.46 % of the
+    // body height squared, less than one full-length fold's square (1 %): P is not measured.
+    // Measured anyway, its one short fold vanishes at x0.5.
+    const WrinkleSummary cami = labelled_wrinkles(q, "top", 1.0);
+    INFO(cami.brief_report());
+    CHECK(cami.termination == WrinkleTermination::garment_too_small);
+    CHECK(cami.message.find("% of body height squared") != std::string::npos);
+    WrinkleOptions any_size;
+    any_size.min_garment_area_fraction = 0;
+    any_size.min_fold_count = 0;
+    const WrinkleSummary c1 = labelled_wrinkles(q, "top", 1.0, any_size);
+    const WrinkleSummary c05 = labelled_wrinkles(q, "top", 0.5, any_size);
+    INFO(c1.brief_report() << " / x0.5 " << c05.brief_report());
+    REQUIRE(c1.density_per_m2 > 0);
+    CHECK(c05.density_per_m2 / c1.density_per_m2 < 0.8);
 }
 
 TEST_CASE("automatic garment types of a maxi skirt, a belted dress, a raised-arm t-shirt and a tank top beside a pale arm", "[vision][photos][classify]") {

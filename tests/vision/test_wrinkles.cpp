@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
+
 using namespace drape;
 using namespace drape::vision;
 
@@ -115,6 +117,40 @@ TEST_CASE("the photo's own blur counts towards the Hessian scales", "[vision][wr
     CHECK(std::abs(doubled - sharp) > 1.5);
 }
 
+TEST_CASE("wrinkle density does not depend on the thread count", "[vision][wrinkles]") {
+    const Panel p = make_panel(6, 1.0, 0.1);
+    WrinkleOptions one, two;
+    one.threads = 1;
+    two.threads = 2;
+    std::vector<Fold> f1, f2;
+    const WrinkleSummary s1 = detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, one, &f1);
+    const WrinkleSummary s2 = detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, two, &f2);
+    INFO(s1.brief_report() << " / " << s2.brief_report());
+    REQUIRE(s1.fold_count > 3);
+    CHECK(s1.fold_count == s2.fold_count);  // summed in a fixed order: bit for bit
+    CHECK(s1.density_per_m2 == s2.density_per_m2);
+    CHECK(s1.folds == s2.folds);
+    REQUIRE(f1.size() == f2.size());
+    for (size_t i = 0; i < f1.size(); ++i) CHECK(f1[i].ridge.points_px == f2[i].ridge.points_px);
+}
+
+TEST_CASE("a garment too small to hold one full-length fold has no P", "[vision][wrinkles]") {
+    // The panel is 160 x 200 px; a 40 x 40 px corner of it is 0.6 % of the figure's body
+    // height squared, below the square of a full-length fold (1 %).
+    const Panel p = make_panel(6, 1.0);
+    const double H = p.joints.body_height_px();
+    cv::Mat corner = cv::Mat::zeros(p.mask.size(), CV_8UC1);
+    const int side = int(std::lround(std::sqrt(0.006) * H));
+    corner(cv::Rect(130, 260, side, side)).setTo(255);
+    const WrinkleSummary s = detect_wrinkles(p.photo, corner, cv::Mat(), p.joints, {}, nullptr);
+    INFO(s.brief_report());
+    CHECK(s.termination == WrinkleTermination::garment_too_small);
+    CHECK_FALSE(s.usable());
+    WrinkleOptions any_size;
+    any_size.min_garment_area_fraction = 0;
+    CHECK(detect_wrinkles(p.photo, corner, cv::Mat(), p.joints, any_size, nullptr).usable());
+}
+
 TEST_CASE("detect_wrinkles rejects mismatched inputs", "[vision][wrinkles][errors]") {
     const Panel p = make_panel(3, 1.0);
     CHECK_THROWS_AS(detect_wrinkles(p.photo, cv::Mat(10, 10, CV_8UC1), cv::Mat(), p.joints, {}, nullptr),
@@ -127,6 +163,15 @@ TEST_CASE("detect_wrinkles rejects mismatched inputs", "[vision][wrinkles][error
     CHECK_THROWS_AS(detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, bad, nullptr), InvalidInput);
     bad = WrinkleOptions{};
     bad.phase_ensemble = 3;
+    CHECK_THROWS_AS(detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, bad, nullptr), InvalidInput);
+    bad = WrinkleOptions{};
+    bad.threads = -1;
+    CHECK_THROWS_AS(detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, bad, nullptr), InvalidInput);
+    bad = WrinkleOptions{};
+    bad.min_fold_count = -0.1;
+    CHECK_THROWS_AS(detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, bad, nullptr), InvalidInput);
+    bad = WrinkleOptions{};
+    bad.min_garment_area_fraction = std::nan("");
     CHECK_THROWS_AS(detect_wrinkles(p.photo, p.mask, cv::Mat(), p.joints, bad, nullptr), InvalidInput);
     // A tiny garment is reported, not an error.
     cv::Mat speck = cv::Mat::zeros(p.mask.size(), CV_8UC1);

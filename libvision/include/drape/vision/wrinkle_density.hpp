@@ -43,7 +43,7 @@ struct WrinkleOptions {
     /// Number of detections averaged into P, at working body heights spread geometrically
     /// over working_body_height_px x 1.15^[-1, 1] (1 = a single detection). One detection
     /// depends on the sampling grid through its thresholds; the mean does much less.
-    int resolution_ensemble = 5;  ///< >= 1
+    int resolution_ensemble = 10;  ///< >= 1
     /// The photo's own blur, a Gaussian sigma in the photo's pixels (optics, demosaicing,
     /// JPEG, resampling). A Hessian scale sigma (working pixels) is reached by blurring the
     /// resampled garment by sqrt(sigma^2 - (source_blur_px x working/photo scale)^2) only,
@@ -53,7 +53,18 @@ struct WrinkleOptions {
     /// Detections per working resolution, each on the working grid shifted by a different
     /// sub-pixel offset (1: none; 2: also shifted by half a pixel in x and y; 4: all four
     /// half-pixel shifts). P is the mean over resolution_ensemble x phase_ensemble runs.
-    int phase_ensemble = 2;  ///< 1, 2 or 4
+    int phase_ensemble = 4;  ///< 1, 2 or 4
+    /// Threads for the ensemble's detections (0 = all cores). P does not depend on it.
+    int threads = 0;  ///< >= 0
+    /// Detection limit: an ensemble mean below this many full-length folds is reported as
+    /// no fold (P = 0, folds_detected false). On a plain garment a few of the ensemble's
+    /// grids still pair two short edges (0.03-0.12 folds on the shared photos), a count with
+    /// no stable ratio across resolutions.
+    double min_fold_count = 0.25;  ///< >= 0
+    /// P is not measured (garment_too_small) on a garment smaller than this x body height
+    /// squared: the default, 0.01 = full_fold_fraction^2, is the square of one full-length
+    /// fold; a smaller patch cannot hold one.
+    double min_garment_area_fraction = 0.01;  ///< >= 0
 
     bool is_valid(std::string* why = nullptr) const;
 };
@@ -80,10 +91,11 @@ struct WrinkleSummary {
     int edges_detected = 0;       ///< after quadric fitting and the length filter
     int edges_merged = 0;         ///< after merging
     int folds = 0;                ///< paired folds found
-    double fold_count = 0;        ///< folds weighted by length (WrinkleOptions::full_fold_fraction), ensemble mean
+    double fold_count = 0;        ///< folds weighted by length (WrinkleOptions::full_fold_fraction), ensemble mean (also below the detection limit)
+    bool folds_detected = false;  ///< fold_count reached WrinkleOptions::min_fold_count
     double garment_area_px = 0;
     double garment_area_m2 = 0;
-    double density_per_m2 = 0;    ///< P = fold_count / garment_area_m2
+    double density_per_m2 = 0;    ///< P = fold_count / garment_area_m2, 0 when !folds_detected
     double seconds = 0;
 
     bool usable() const { return termination == WrinkleTermination::ok; }
