@@ -1,5 +1,5 @@
-// drape segment IMAGE --joints J.json [--strokes S.png] [--hint TYPE] [--height M] --out DIR
-// drape strokes LABELS.png --out S.png
+// drape segment IMAGE --joints J.json [--strokes S.png] [--palette P.json] [--hint TYPE] [--height M] --out DIR
+// drape strokes LABELS.png --out S.png [--colour] [--palette P.json]
 #include "commands.hpp"
 #include "image_io.hpp"
 #include "json_io.hpp"
@@ -23,10 +23,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// What a colour-coded stroke image was read as, for the user who drew it.
+void report_decoding(const vision::StrokeDecoding& d, const vision::LabelTable& table) {
+    std::cerr << "drape segment: colour-coded strokes: " << d.marked_px << " px marked (";
+    for (size_t i = 0; i < d.per_class.size(); ++i)
+        std::cerr << (i ? ", " : "") << table.name(d.per_class[i].first) << " " << d.per_class[i].second;
+    std::cerr << "); " << d.unrecognised_px << " opaque px of no palette colour left unmarked";
+    if (d.most_common_unrecognised_px > 0)
+        std::cerr << " (most often " << vision::StrokePalette::hex(d.most_common_unrecognised) << ", "
+                  << d.most_common_unrecognised_px << " px)";
+    std::cerr << "\n";
+}
+
 struct SegmentArgs {
     std::string image;
     std::string joints;
     std::string strokes;
+    std::string palette;
     std::string hint;
     double height_m = 1.70;
     std::string out;
@@ -50,8 +63,15 @@ void run_segment(const SegmentArgs& args) {
     vision::Segmentation seg;
     vision::SegmentationSummary summary;
     std::string mode;
+    if (!args.palette.empty() && args.strokes.empty())
+        throw InvalidInput("--palette is for colour-coded --strokes; no --strokes given");
     if (!args.strokes.empty()) {
-        const cv::Mat strokes = vision::load_label_map(args.strokes, "strokes");
+        const vision::StrokePalette palette = args.palette.empty()
+                                                  ? vision::StrokePalette::fashionista_default()
+                                                  : read_stroke_palette(args.palette, options.table);
+        vision::StrokeDecoding decoding;
+        const cv::Mat strokes = vision::load_strokes(args.strokes, palette, &decoding);
+        if (decoding.marked_px > 0) report_decoding(decoding, options.table);
         summary = vision::segment_with_strokes(photo, strokes, &joints, options, seg);
         mode = "strokes";
     } else {
@@ -97,8 +117,11 @@ void add_segment_command(CLI::App& app) {
                     "\"pixel_origin\": one_based (default) | zero_based | corner}")
         ->required();
     cmd->add_option("--strokes", args->strokes,
-                    "8-bit PNG of the photo's size: class ids of labels.txt where marked, 255 "
-                    "elsewhere (see `drape strokes`)");
+                    "PNG of the photo's size: 8-bit gray with class ids of labels.txt where marked, 255 "
+                    "elsewhere (see `drape strokes`), or colour-coded RGB/RGBA drawn by hand (docs/vision.md)");
+    cmd->add_option("--palette", args->palette,
+                    "JSON {\"tolerance\": 40, \"colours\": {\"skirt\": \"#ffff00\", ...}} for colour-coded "
+                    "strokes (default: docs/vision.md, \"Colour-coded strokes\")");
     cmd->add_option("--hint", args->hint,
                     "garment type hint: t-shirt, tank-top, long-sleeve-top, dress, skirt, pants, shorts");
     cmd->add_option("--height", args->height_m, "the person's stature in metres (default 1.70)");
@@ -107,17 +130,38 @@ void add_segment_command(CLI::App& app) {
 }
 
 void add_strokes_command(CLI::App& app) {
-    auto labels = std::make_shared<std::string>();
-    auto out = std::make_shared<std::string>();
+    struct StrokesArgs {
+        std::string labels, out, palette;
+        bool colour = false;
+    };
+    auto args = std::make_shared<StrokesArgs>();
     CLI::App* cmd = app.add_subcommand(
         "strokes", "Simulate user strokes from a ground-truth label map (docs/vision.md): a few "
                    "medial-axis strokes per region, at most 3 % of the pixels");
-    cmd->add_option("labels", *labels, "8-bit class-id PNG (labels.txt ids)")->required();
-    cmd->add_option("--out", *out, "the strokes PNG to write (255 = unmarked)")->required();
-    cmd->callback([labels, out] {
-        const cv::Mat gt = vision::load_label_map(*labels, "labels");
+    cmd->add_option("labels", args->labels, "8-bit class-id PNG (labels.txt ids)")->required();
+    cmd->add_option("--out", args->out, "the strokes PNG to write (255 = unmarked)")->required();
+    cmd->add_flag("--colour", args->colour,
+                  "write colour-coded strokes (RGBA, transparent where unmarked) as a person would draw them");
+    cmd->add_option("--palette", args->palette, "palette JSON for --colour (default: the built-in palette)");
+    cmd->callback([args] {
+        if (!args->palette.empty() && !args->colour)
+            throw InvalidInput("--palette is for --colour; add --colour or drop --palette");
+        const vision::LabelTable& table = vision::LabelTable::fashionista();
+        const vision::StrokePalette palette = args->palette.empty() ? vision::StrokePalette::fashionista_default()
+                                                                    : read_stroke_palette(args->palette, table);
+        const cv::Mat gt = vision::load_label_map(args->labels, "labels");
         const cv::Mat strokes = vision::simulate_strokes(gt);
-        write_png(*out, strokes);
+        if (args->colour) {
+            std::vector<int> missing;
+            write_png(args->out, vision::colour_strokes(strokes, palette, &missing));
+            if (!missing.empty()) {
+                std::cerr << "drape strokes: classes without a palette colour left out:";
+                for (int id : missing) std::cerr << " " << table.name(id);
+                std::cerr << "\n";
+            }
+        } else {
+            write_png(args->out, strokes);
+        }
         std::cerr << "drape strokes: marked " << 100.0 * vision::marked_fraction(strokes)
                   << " % of the pixels\n";
     });

@@ -109,4 +109,39 @@ void make_output_dir(const std::filesystem::path& dir) {
                       (ec ? ": " + ec.message() : std::string()));
 }
 
+vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, const vision::LabelTable& table) {
+    const nlohmann::json j = read_json_file(file);
+    const std::string f = file.string();
+    if (!j.is_object()) throw InvalidInput(f + ": a stroke palette must be a JSON object");
+    reject_unknown_keys(j, {"tolerance", "colours"}, f);
+    vision::StrokePalette p;
+    if (const auto t = optional_number(j, "tolerance", f)) {
+        if (*t != std::floor(*t) || *t < 0 || *t > 63)
+            throw InvalidInput(f + ": field 'tolerance' must be an integer in 0..63, got " + j["tolerance"].dump());
+        p.tolerance = int(*t);
+    }
+    if (!j.contains("colours") || !j["colours"].is_object() || j["colours"].empty())
+        throw InvalidInput(f + ": field 'colours' must be an object {\"<class name>\": \"#rrggbb\", ...}");
+    for (const auto& [name, colour] : j["colours"].items()) {
+        const int id = table.id(name);
+        if (id < 0) throw InvalidInput(f + ": colours: '" + name + "' is not a class of the label table");
+        if (!colour.is_string())
+            throw InvalidInput(f + ": colours: '" + name + "' must be a \"#rrggbb\" string, got " + colour.dump());
+        try {
+            p.entries.push_back({id, vision::StrokePalette::parse_hex(colour.get<std::string>())});
+        } catch (const InvalidInput& e) {
+            throw InvalidInput(f + ": colours: '" + name + "': " + e.what());
+        }
+    }
+    std::string why;
+    if (!p.is_valid(&why)) throw InvalidInput(f + ": " + why);
+    return p;
+}
+
+nlohmann::json stroke_palette_json(const vision::StrokePalette& palette, const vision::LabelTable& table) {
+    nlohmann::json colours = nlohmann::json::object();
+    for (const auto& e : palette.entries) colours[table.name(e.class_id)] = vision::StrokePalette::hex(e.rgb);
+    return {{"tolerance", palette.tolerance}, {"colours", colours}};
+}
+
 }  // namespace drape::app

@@ -6,6 +6,7 @@
 #include <drape/vision/garment_result.hpp>
 #include <drape/vision/joints.hpp>
 #include <drape/vision/segmentation.hpp>
+#include <drape/vision/strokes.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,15 @@ nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
 
 /// The shape cues of a garment (classify_garment.hpp) as a JSON object.
 nlohmann::json cues_json(const vision::GarmentShapeCues& cues);
+
+/// A stroke palette file: {"tolerance": 40 (optional), "colours": {"<class name of
+/// labels.txt>": "#rrggbb", ...}} (docs/vision.md, "Colour-coded strokes"). It replaces the
+/// default palette. \throw drape::IoError (unreadable), drape::InvalidInput naming the file
+/// and the field (unknown class, bad colour, colours too close).
+vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, const vision::LabelTable& table);
+
+/// The palette as such a file's JSON.
+nlohmann::json stroke_palette_json(const vision::StrokePalette& palette, const vision::LabelTable& table);
 
 /// Creates `dir` (and parents). \throw drape::IoError when it cannot.
 void make_output_dir(const std::filesystem::path& dir);

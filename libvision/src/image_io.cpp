@@ -18,6 +18,22 @@ bool ImageLimits::is_valid(std::string* why) const {
     return true;
 }
 
+namespace {
+
+/// The size limits of `limits` (valid) for an image of `size`.
+void check_size(const cv::Size& size, const std::string& what, const ImageLimits& limits) {
+    require(size.width <= limits.max_width_px && size.height <= limits.max_height_px &&
+                static_cast<std::int64_t>(size.width) * size.height <= limits.max_pixels,
+            what, " is too large: ", size.width, " x ", size.height, " px (limits ",
+            limits.max_width_px, " x ", limits.max_height_px, ", ", limits.max_pixels,
+            " pixels)");
+    require(size.width >= limits.min_side_px && size.height >= limits.min_side_px, what,
+            " is too small: ", size.width, " x ", size.height, " px (min side ",
+            limits.min_side_px, ")");
+}
+
+}  // namespace
+
 void check_image(const cv::Mat& image, int type, const std::string& what,
                  const ImageLimits& limits) {
     std::string why;
@@ -25,14 +41,7 @@ void check_image(const cv::Mat& image, int type, const std::string& what,
     require(!image.empty(), what, " is empty");
     require(image.type() == type, what, " has OpenCV type ", image.type(), ", expected ",
             type == CV_8UC3 ? "8-bit 3-channel (BGR)" : "8-bit single-channel");
-    require(image.cols <= limits.max_width_px && image.rows <= limits.max_height_px &&
-                static_cast<std::int64_t>(image.cols) * image.rows <= limits.max_pixels,
-            what, " is too large: ", image.cols, " x ", image.rows, " px (limits ",
-            limits.max_width_px, " x ", limits.max_height_px, ", ", limits.max_pixels,
-            " pixels)");
-    require(image.cols >= limits.min_side_px && image.rows >= limits.min_side_px, what,
-            " is too small: ", image.cols, " x ", image.rows, " px (min side ",
-            limits.min_side_px, ")");
+    check_size(image.size(), what, limits);
 }
 
 namespace {
@@ -67,6 +76,16 @@ cv::Mat load_image(const std::filesystem::path& path, const ImageLimits& limits)
     // IMREAD_COLOR applies the EXIF orientation (IMREAD_IGNORE_ORIENTATION is not set).
     cv::Mat image = read(path, cv::IMREAD_COLOR, "photo", limits);
     check_image(image, CV_8UC3, "photo '" + path.string() + "'", limits);
+    return image;
+}
+
+cv::Mat load_image_unchanged(const std::filesystem::path& path, const std::string& what,
+                             const ImageLimits& limits) {
+    cv::Mat image = read(path, cv::IMREAD_UNCHANGED, what, limits);
+    require(image.depth() == CV_8U && (image.channels() == 1 || image.channels() == 3 || image.channels() == 4),
+            what, " '", path.string(), "' must be an 8-bit image with 1, 3 or 4 channels (got ",
+            image.channels(), " channel(s), depth code ", image.depth(), ")");
+    check_size(image.size(), what + " '" + path.string() + "'", limits);
     return image;
 }
 

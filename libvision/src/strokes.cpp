@@ -2,6 +2,7 @@
 // geodesic paths through the axis (docs/vision.md, "Simulated strokes").
 #include <drape/vision/strokes.hpp>
 
+#include <drape/vision/image_io.hpp>
 #include <drape/vision/label_table.hpp>
 
 #include "thinning.hpp"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <map>
 
 namespace drape::vision {
 
@@ -175,6 +177,215 @@ cv::Mat simulate_strokes(const cv::Mat& labels, const StrokeOptions& options) {
 double marked_fraction(const cv::Mat& strokes) {
     if (strokes.empty()) return 0;
     return static_cast<double>(cv::countNonZero(strokes != kUnmarked)) / strokes.total();
+}
+
+// ---- Colour-coded strokes -----------------------------------------------------------------
+
+StrokePalette StrokePalette::fashionista_default() {
+    const LabelTable& t = LabelTable::fashionista();
+    const std::pair<const char*, cv::Vec3b> colours[] = {
+        {"null", {0, 0, 255}},        {"skin", {255, 128, 0}},   {"hair", {128, 0, 0}},
+        {"t-shirt", {255, 0, 0}},     {"top", {255, 0, 255}},    {"shirt", {128, 0, 128}},
+        {"sweater", {128, 0, 255}},   {"dress", {0, 255, 0}},    {"skirt", {255, 255, 0}},
+        {"pants", {0, 255, 255}},     {"shorts", {0, 128, 128}}, {"jeans", {0, 0, 128}},
+        {"jacket", {0, 128, 0}},      {"bag", {128, 128, 0}},    {"belt", {255, 0, 128}},
+        {"shoes", {128, 255, 0}}};
+    StrokePalette p;
+    for (const auto& [name, rgb] : colours) p.entries.push_back({t.id(name), rgb});
+    return p;
+}
+
+std::string StrokePalette::hex(const cv::Vec3b& rgb) {
+    static const char* digits = "0123456789abcdef";
+    std::string s = "#";
+    for (int c = 0; c < 3; ++c) {
+        s += digits[rgb[c] >> 4];
+        s += digits[rgb[c] & 15];
+    }
+    return s;
+}
+
+cv::Vec3b StrokePalette::parse_hex(const std::string& text) {
+    const std::string h = !text.empty() && text[0] == '#' ? text.substr(1) : text;
+    auto value = [&](char ch) -> int {
+        if (ch >= '0' && ch <= '9') return ch - '0';
+        if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
+        if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
+        return -1;
+    };
+    bool ok = h.size() == 6;
+    cv::Vec3b rgb;
+    for (int c = 0; ok && c < 3; ++c) {
+        const int hi = value(h[size_t(2 * c)]), lo = value(h[size_t(2 * c + 1)]);
+        ok = hi >= 0 && lo >= 0;
+        if (ok) rgb[c] = static_cast<std::uint8_t>(16 * hi + lo);
+    }
+    require(ok, "colour '", text, "' is not of the form #rrggbb");
+    return rgb;
+}
+
+bool StrokePalette::is_valid(std::string* why) const {
+    auto fail = [&](const std::string& m) { if (why) *why = m; return false; };
+    if (entries.empty()) return fail("the palette has no colour");
+    if (tolerance < 0 || tolerance > 63) return fail("tolerance must be in [0, 63]");
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const auto& a = entries[i];
+        if (a.class_id < 0 || a.class_id >= kUnmarked)
+            return fail("class id " + std::to_string(a.class_id) + " is outside 0..254");
+        for (size_t k = 0; k < i; ++k) {
+            const auto& b = entries[k];
+            if (a.class_id == b.class_id)
+                return fail("class id " + std::to_string(a.class_id) + " has two colours");
+            int d = 0;
+            for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.rgb[c]) - int(b.rgb[c])));
+            if (d <= 2 * tolerance)
+                return fail("colours " + hex(a.rgb) + " and " + hex(b.rgb) + " differ by " + std::to_string(d) +
+                            ", not more than twice the tolerance " + std::to_string(tolerance));
+        }
+    }
+    return true;
+}
+
+cv::Mat strokes_from_colours(const cv::Mat& image, const StrokePalette& palette, StrokeDecoding* report) {
+    std::string why;
+    require(palette.is_valid(&why), "stroke palette: ", why);
+    require(!image.empty() && (image.type() == CV_8UC3 || image.type() == CV_8UC4),
+            "colour-coded strokes must be 8-bit RGB or RGBA (got OpenCV type ", image.type(), ")");
+    const int ch = image.channels();
+    cv::Mat out(image.size(), CV_8UC1, cv::Scalar(kUnmarked));
+    StrokeDecoding r;
+    std::vector<long long> count(256, 0);
+    std::map<std::uint32_t, long long> unknown;  // packed 0xRRGGBB -> pixels
+    for (int y = 0; y < image.rows; ++y) {
+        const std::uint8_t* p = image.ptr<std::uint8_t>(y);
+        std::uint8_t* o = out.ptr<std::uint8_t>(y);
+        for (int x = 0; x < image.cols; ++x, p += ch) {
+            if (ch == 4 && p[3] < 128) continue;
+            const int rr = p[2], gg = p[1], bb = p[0];
+            int hit = -1;
+            for (const auto& e : palette.entries)
+                if (std::abs(rr - e.rgb[0]) <= palette.tolerance && std::abs(gg - e.rgb[1]) <= palette.tolerance &&
+                    std::abs(bb - e.rgb[2]) <= palette.tolerance) {
+                    hit = e.class_id;
+                    break;
+                }
+            if (hit >= 0) {
+                o[x] = static_cast<std::uint8_t>(hit);
+                ++count[size_t(hit)];
+                ++r.marked_px;
+            } else {
+                ++r.unrecognised_px;
+                const bool canvas = (rr > 240 && gg > 240 && bb > 240) || (rr < 16 && gg < 16 && bb < 16);
+                if (!canvas) ++unknown[std::uint32_t(rr << 16 | gg << 8 | bb)];
+            }
+        }
+    }
+    // Anti-aliased borders on a black or white canvas (or a layer whose colour was darkened
+    // with its alpha) blend a stroke's colour towards black or white: half of red is the
+    // palette's maroon, half of yellow its olive. A pixel whose colour is such a blend of
+    // the colour of a neighbouring stroke pixel is that stroke's rim, not a stroke of its own.
+    const size_t ne = palette.entries.size();
+    std::vector<int> entry_of(256, -1);
+    for (size_t i = 0; i < ne; ++i) entry_of[size_t(palette.entries[i].class_id)] = int(i);
+    // blend[a * ne + b]: a's colour is b's mixed 20-80 % with black, white or a third colour
+    // (where two strokes cross: red over yellow makes the palette's orange).
+    std::vector<cv::Vec3d> backdrops = {{0, 0, 0}, {255, 255, 255}};
+    for (const auto& e : palette.entries) backdrops.emplace_back(e.rgb[0], e.rgb[1], e.rgb[2]);
+    std::vector<char> blend(ne * ne, 0);
+    for (size_t a = 0; a < ne; ++a)
+        for (size_t b = 0; b < ne; ++b) {
+            if (a == b) continue;
+            for (size_t q = 0; q < backdrops.size() && !blend[a * ne + b]; ++q) {
+                if (q == a + 2 || q == b + 2) continue;
+                for (int k = 2; k <= 8 && !blend[a * ne + b]; ++k) {
+                    const double t = 0.1 * k;
+                    int d = 0;
+                    for (int c = 0; c < 3; ++c)
+                        d = std::max(d, int(std::lround(std::abs(palette.entries[a].rgb[c] -
+                                                                 (t * palette.entries[b].rgb[c] + (1 - t) * backdrops[q][c])))));
+                    if (d <= palette.tolerance) blend[a * ne + b] = 1;
+                }
+            }
+        }
+    std::vector<cv::Point> rims;
+    for (int y = 0; y < out.rows; ++y)
+        for (int x = 0; x < out.cols; ++x) {
+            const int v = out.at<std::uint8_t>(y, x);
+            if (v == kUnmarked) continue;
+            const size_t a = size_t(entry_of[size_t(v)]);
+            bool rim = false;
+            for (int dy = -1; dy <= 1 && !rim; ++dy)
+                for (int dx = -1; dx <= 1 && !rim; ++dx) {
+                    const int yy = y + dy, xx = x + dx;
+                    if (yy < 0 || xx < 0 || yy >= out.rows || xx >= out.cols) continue;
+                    const int w = out.at<std::uint8_t>(yy, xx);
+                    if (w == kUnmarked || w == v) continue;
+                    rim = blend[a * ne + size_t(entry_of[size_t(w)])];
+                }
+            if (rim) rims.push_back({x, y});
+        }
+    for (const auto& pt : rims) {
+        --count[out.at<std::uint8_t>(pt)];
+        out.at<std::uint8_t>(pt) = kUnmarked;
+        --r.marked_px;
+        ++r.unrecognised_px;
+    }
+    for (int id = 0; id < 256; ++id)
+        if (count[size_t(id)] > 0) r.per_class.emplace_back(id, count[size_t(id)]);
+    for (const auto& [rgb, n] : unknown)
+        if (n > r.most_common_unrecognised_px) {
+            r.most_common_unrecognised_px = n;
+            r.most_common_unrecognised = cv::Vec3b(std::uint8_t(rgb >> 16), std::uint8_t(rgb >> 8), std::uint8_t(rgb));
+        }
+    long long off_palette = 0;  // opaque pixels of neither a palette nor a canvas colour
+    for (const auto& [rgb, n] : unknown) off_palette += n;
+    require(off_palette <= 0.5 * double(image.total()), "this looks like a photo, not strokes: ",
+            std::lround(100.0 * double(off_palette) / double(image.total())),
+            " % of its pixels have colours of no palette entry (colour-coded strokes are drawn on a "
+            "transparent layer or a white or black canvas; see docs/vision.md, \"Colour-coded strokes\")");
+    require(r.marked_px > 0, "no pixel of the stroke image has a palette colour (",
+            r.unrecognised_px, " opaque pixels of other colours",
+            r.most_common_unrecognised_px > 0 ? ", most often " + StrokePalette::hex(r.most_common_unrecognised) : "",
+            "); see docs/vision.md, \"Colour-coded strokes\"");
+    if (report) *report = r;
+    return out;
+}
+
+cv::Mat colour_strokes(const cv::Mat& strokes, const StrokePalette& palette, std::vector<int>* missing) {
+    std::string why;
+    require(palette.is_valid(&why), "stroke palette: ", why);
+    require(!strokes.empty() && strokes.type() == CV_8UC1, "strokes must be an 8-bit single-channel map");
+    std::vector<int> colour_of(256, -1);
+    for (size_t i = 0; i < palette.entries.size(); ++i) colour_of[size_t(palette.entries[i].class_id)] = int(i);
+    std::vector<char> absent(256, 0);
+    cv::Mat out(strokes.size(), CV_8UC4, cv::Scalar(0, 0, 0, 0));
+    for (int y = 0; y < strokes.rows; ++y) {
+        const std::uint8_t* s = strokes.ptr<std::uint8_t>(y);
+        cv::Vec4b* o = out.ptr<cv::Vec4b>(y);
+        for (int x = 0; x < strokes.cols; ++x) {
+            if (s[x] == kUnmarked) continue;
+            const int k = colour_of[s[x]];
+            if (k < 0) { absent[s[x]] = 1; continue; }
+            const cv::Vec3b& c = palette.entries[size_t(k)].rgb;
+            o[x] = cv::Vec4b(c[2], c[1], c[0], 255);
+        }
+    }
+    if (missing) {
+        missing->clear();
+        for (int id = 0; id < 256; ++id)
+            if (absent[size_t(id)]) missing->push_back(id);
+    }
+    return out;
+}
+
+cv::Mat load_strokes(const std::filesystem::path& path, const StrokePalette& palette, StrokeDecoding* report) {
+    const cv::Mat image = load_image_unchanged(path, "strokes");
+    if (image.channels() == 1) return image;
+    try {
+        return strokes_from_colours(image, palette, report);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("strokes '" + path.string() + "': " + e.what());
+    }
 }
 
 }  // namespace drape::vision

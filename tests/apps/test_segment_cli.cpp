@@ -74,6 +74,37 @@ TEST_CASE("drape segment writes labels, garments, overlays (auto and strokes)", 
     }
 }
 
+TEST_CASE("drape segment reads hand-drawn colour-coded strokes like class-id strokes", "[apps][segment]") {
+    DRAPE_REQUIRE_SHARED(photos, "data/photos");
+    const auto [image, joints, labels] = skirt_photo(photos);
+    const fs::path dir = drape::test::scratch_dir("segment_cli_colour");
+    // This photo's labels hold a necklace, which the default palette has no colour for.
+    std::ofstream(dir / "palette.json") << R"({"tolerance": 30, "colours": {"null": "#0000ff",
+        "skin": "#ff8000", "hair": "#800000", "t-shirt": "#ff0000", "skirt": "#ffff00",
+        "bag": "#808000", "shoes": "#80ff00", "necklace": "#ff0080"}})";
+    auto r = run_drape("strokes " + q(labels) + " --out " + q(dir / "ids.png"));
+    REQUIRE(r.exit_code == 0);
+    r = run_drape("strokes " + q(labels) + " --colour --out " + q(dir / "default.png"));
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("left out: necklace") != std::string::npos);
+    r = run_drape("strokes " + q(labels) + " --colour --palette " + q(dir / "palette.json") + " --out " +
+                  q(dir / "colour.png"));
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("left out") == std::string::npos);
+    const std::string base = "segment " + q(image) + " --joints " + q(joints) + " --strokes ";
+    r = run_drape(base + q(dir / "ids.png") + " --out " + q(dir / "a"));
+    REQUIRE(r.exit_code == 0);
+    r = run_drape(base + q(dir / "colour.png") + " --palette " + q(dir / "palette.json") + " --out " + q(dir / "b"));
+    INFO(r.out);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("colour-coded strokes:") != std::string::npos);
+    CHECK(r.out.find("skirt") != std::string::npos);
+    std::ifstream fa(dir / "a" / "labels.png", std::ios::binary), fb(dir / "b" / "labels.png", std::ios::binary);
+    const std::string a((std::istreambuf_iterator<char>(fa)), {}), b((std::istreambuf_iterator<char>(fb)), {});
+    CHECK(!a.empty());
+    CHECK(a == b);  // the same labels, byte for byte
+}
+
 TEST_CASE("drape segment and eval-segment reject bad input with exit codes", "[apps][segment][errors]") {
     DRAPE_REQUIRE_SHARED(photos, "data/photos");
     const auto [image, joints, labels] = skirt_photo(photos);
@@ -85,7 +116,25 @@ TEST_CASE("drape segment and eval-segment reject bad input with exit codes", "[a
     r = run_drape("segment " + q(image) + " --joints " + q(joints) + " --strokes " + q(image) +
                   " --out " + q(dir / "o"));
     CHECK(r.exit_code == 2);
-    CHECK(r.out.find("single-channel") != std::string::npos);
+    CHECK(r.out.find("looks like a photo, not strokes") != std::string::npos);
+    // Palettes: colours too close, an unknown class, a bad tolerance; --palette alone.
+    const std::pair<const char*, const char*> palettes[] = {
+        {R"({"colours": {"skirt": "#ffff00", "coat": "#fafa0a"}})", "differ by 10"},
+        {R"({"colours": {"skrt": "#ffff00"}})", "'skrt' is not a class"},
+        {R"({"tolerance": 80, "colours": {"skirt": "#ffff00"}})", "field 'tolerance'"},
+        {R"({"colours": {"skirt": "yellow"}})", "#rrggbb"}};
+    for (const auto& [text, message] : palettes) {
+        std::ofstream(dir / "palette.json") << text;
+        r = run_drape("strokes " + q(labels) + " --colour --palette " + q(dir / "palette.json") + " --out " +
+                      q(dir / "s.png"));
+        INFO(text << " -> " << r.out);
+        CHECK(r.exit_code == 2);
+        CHECK(r.out.find(message) != std::string::npos);
+    }
+    r = run_drape("segment " + q(image) + " --joints " + q(joints) + " --palette " + q(dir / "palette.json") +
+                  " --out " + q(dir / "o"));
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("no --strokes") != std::string::npos);
     // Unknown hint.
     r = run_drape("segment " + q(image) + " --joints " + q(joints) + " --hint kilt --out " + q(dir / "o"));
     CHECK(r.exit_code == 2);

@@ -35,6 +35,12 @@ cv::Mat load_image(const std::filesystem::path& path, const ImageLimits& limits 
 cv::Mat load_label_map(const std::filesystem::path& path, const std::string& what,
                        const ImageLimits& limits = {});
 
+/// Reads an 8-bit image with its channels as stored (1 gray, 3 BGR or 4 BGRA), no EXIF
+/// rotation: for stroke maps. \throw drape::IoError (missing/unreadable),
+/// drape::InvalidInput (16-bit or other formats, breaking `limits`).
+cv::Mat load_image_unchanged(const std::filesystem::path& path, const std::string& what,
+                             const ImageLimits& limits = {});
+
 /// Checks an in-memory image against `limits` and type (CV_8UC3 or CV_8UC1 as `type`).
 /// \throw drape::InvalidInput naming `what`, the size and the broken limit.
 void check_image(const cv::Mat& image, int type, const std::string& what,

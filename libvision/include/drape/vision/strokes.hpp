@@ -5,7 +5,9 @@
 
 #include <opencv2/core.hpp>
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace drape::vision {
 
@@ -36,5 +38,63 @@ cv::Mat simulate_strokes(const cv::Mat& labels, const StrokeOptions& options = {
 
 /// Fraction of pixels of a stroke map that are marked (not 255).
 double marked_fraction(const cv::Mat& strokes);
+
+// ---- Colour-coded strokes, for people drawing by hand (docs/vision.md) -----------------
+
+/// The colour of each class in a hand-drawn stroke image. A pixel is marked with a class
+/// when it is opaque (alpha >= 128, if the image has alpha) and each of its channels is
+/// within `tolerance` of the class's colour; every other pixel (a transparent layer, a
+/// white or black canvas, anti-aliased stroke borders, the photo itself) is unmarked. A
+/// marked pixel whose colour is another class's colour mixed 20-80 % with black, white or a
+/// third palette colour, next to a pixel of that class, is that stroke's anti-aliased rim
+/// (or where two strokes cross) and is unmarked too.
+struct StrokePalette {
+    struct Entry {
+        int class_id = 0;     ///< id of the label table, 0..254
+        cv::Vec3b rgb;        ///< the colour, (r, g, b)
+    };
+    std::vector<Entry> entries;
+    int tolerance = 40;  ///< 0..63; colours of distinct entries must differ by more than 2x this in some channel
+
+    /// Colours for the classes a user marks (`fashionista_default` ids): background
+    /// (null) blue, skin orange, hair maroon, t-shirt red, top (tank top) magenta, shirt
+    /// (long-sleeve top) purple, sweater violet, dress green, skirt yellow, pants cyan,
+    /// shorts teal, jeans navy, jacket dark green, bag olive, belt pink, shoes lime.
+    /// Every channel is 0, 128 or 255, so any two colours differ by >= 127 somewhere.
+    static StrokePalette fashionista_default();
+    /// "#rrggbb" of an entry's colour.
+    static std::string hex(const cv::Vec3b& rgb);
+    /// Parses "#rrggbb" (or "rrggbb"). \throw drape::InvalidInput naming the text.
+    static cv::Vec3b parse_hex(const std::string& text);
+
+    bool is_valid(std::string* why = nullptr) const;
+};
+
+/// What decoding a colour-coded stroke image found.
+struct StrokeDecoding {
+    long long marked_px = 0;            ///< pixels given a class
+    long long unrecognised_px = 0;      ///< opaque pixels of no palette colour (left unmarked)
+    std::vector<std::pair<int, long long>> per_class;  ///< (class id, pixels), ascending id
+    cv::Vec3b most_common_unrecognised{0, 0, 0};  ///< (r, g, b), ignoring white and black
+    long long most_common_unrecognised_px = 0;
+};
+
+/// Class-id strokes (CV_8UC1, 255 = unmarked) from a colour-coded image: CV_8UC3 (BGR, as
+/// OpenCV reads) or CV_8UC4 (BGRA). \throw drape::InvalidInput for another type, an
+/// invalid palette, or an image in which no pixel has a palette colour.
+cv::Mat strokes_from_colours(const cv::Mat& image, const StrokePalette& palette,
+                             StrokeDecoding* report = nullptr);
+
+/// The colour-coded image (CV_8UC4 BGRA, transparent where unmarked) of class-id strokes.
+/// Classes without a palette colour are left out and listed in `missing` (ascending).
+cv::Mat colour_strokes(const cv::Mat& strokes, const StrokePalette& palette,
+                       std::vector<int>* missing = nullptr);
+
+/// Reads user strokes of either kind: an 8-bit single-channel PNG of class ids (255 =
+/// unmarked) as it is, or a colour-coded PNG (RGB or RGBA) decoded with `palette`.
+/// \throw drape::IoError (missing/unreadable), drape::InvalidInput (another pixel format,
+///        no palette colour found, size limits).
+cv::Mat load_strokes(const std::filesystem::path& path, const StrokePalette& palette,
+                     StrokeDecoding* report = nullptr);
 
 }  // namespace drape::vision
