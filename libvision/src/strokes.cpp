@@ -254,13 +254,14 @@ cv::Mat strokes_from_colours(const cv::Mat& image, const StrokePalette& palette,
     const int ch = image.channels();
     cv::Mat out(image.size(), CV_8UC1, cv::Scalar(kUnmarked));
     StrokeDecoding r;
-    std::vector<long long> count(256, 0);
+    long long opaque = 0;
     std::map<std::uint32_t, long long> unknown;  // packed 0xRRGGBB -> pixels
     for (int y = 0; y < image.rows; ++y) {
         const std::uint8_t* p = image.ptr<std::uint8_t>(y);
         std::uint8_t* o = out.ptr<std::uint8_t>(y);
         for (int x = 0; x < image.cols; ++x, p += ch) {
             if (ch == 4 && p[3] < 128) continue;
+            ++opaque;
             const int rr = p[2], gg = p[1], bb = p[0];
             int hit = -1;
             for (const auto& e : palette.entries)
@@ -271,10 +272,7 @@ cv::Mat strokes_from_colours(const cv::Mat& image, const StrokePalette& palette,
                 }
             if (hit >= 0) {
                 o[x] = static_cast<std::uint8_t>(hit);
-                ++count[size_t(hit)];
-                ++r.marked_px;
             } else {
-                ++r.unrecognised_px;
                 const bool canvas = (rr > 240 && gg > 240 && bb > 240) || (rr < 16 && gg < 16 && bb < 16);
                 if (!canvas) ++unknown[std::uint32_t(rr << 16 | gg << 8 | bb)];
             }
@@ -324,13 +322,13 @@ cv::Mat strokes_from_colours(const cv::Mat& image, const StrokePalette& palette,
                 }
             if (rim) rims.push_back({x, y});
         }
-    for (const auto& pt : rims) {
-        --count[out.at<std::uint8_t>(pt)];
-        out.at<std::uint8_t>(pt) = kUnmarked;
-        --r.marked_px;
-        ++r.unrecognised_px;
-    }
-    for (int id = 0; id < 256; ++id)
+    for (const auto& pt : rims) out.at<std::uint8_t>(pt) = kUnmarked;
+    // The counts, from the final map: opaque pixels are either marked or not.
+    std::vector<long long> count(256, 0);
+    for (size_t i = 0; i < out.total(); ++i) ++count[out.data[i]];
+    r.marked_px = static_cast<long long>(out.total()) - count[kUnmarked];
+    r.unrecognised_px = opaque - r.marked_px;
+    for (int id = 0; id < 255; ++id)
         if (count[size_t(id)] > 0) r.per_class.emplace_back(id, count[size_t(id)]);
     for (const auto& [rgb, n] : unknown)
         if (n > r.most_common_unrecognised_px) {
