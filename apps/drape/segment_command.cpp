@@ -66,9 +66,7 @@ void run_segment(const SegmentArgs& args) {
     if (!args.palette.empty() && args.strokes.empty())
         throw InvalidInput("--palette is for colour-coded --strokes; no --strokes given");
     if (!args.strokes.empty()) {
-        const vision::StrokePalette palette = args.palette.empty()
-                                                  ? vision::StrokePalette::fashionista_default()
-                                                  : read_stroke_palette(args.palette, options.table);
+        const vision::StrokePalette palette = read_stroke_palette(args.palette, options.table);
         vision::StrokeDecoding decoding;
         const cv::Mat strokes = vision::load_strokes(args.strokes, palette, &decoding);
         if (decoding.marked_px > 0) report_decoding(decoding, options.table);
@@ -147,8 +145,7 @@ void add_strokes_command(CLI::App& app) {
         if (!args->palette.empty() && !args->colour)
             throw InvalidInput("--palette is for --colour; add --colour or drop --palette");
         const vision::LabelTable& table = vision::LabelTable::fashionista();
-        const vision::StrokePalette palette = args->palette.empty() ? vision::StrokePalette::fashionista_default()
-                                                                    : read_stroke_palette(args->palette, table);
+        const vision::StrokePalette palette = read_stroke_palette(args->palette, table);
         const cv::Mat gt = vision::load_label_map(args->labels, "labels");
         const cv::Mat strokes = vision::simulate_strokes(gt);
         if (args->colour) {

@@ -110,6 +110,7 @@ void make_output_dir(const std::filesystem::path& dir) {
 }
 
 vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, const vision::LabelTable& table) {
+    if (file.empty()) return vision::StrokePalette::fashionista_default();
     const nlohmann::json j = read_json_file(file);
     const std::string f = file.string();
     if (!j.is_object()) throw InvalidInput(f + ": a stroke palette must be a JSON object");
@@ -136,12 +137,6 @@ vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, con
     std::string why;
     if (!p.is_valid(&why)) throw InvalidInput(f + ": " + why);
     return p;
-}
-
-nlohmann::json stroke_palette_json(const vision::StrokePalette& palette, const vision::LabelTable& table) {
-    nlohmann::json colours = nlohmann::json::object();
-    for (const auto& e : palette.entries) colours[table.name(e.class_id)] = vision::StrokePalette::hex(e.rgb);
-    return {{"tolerance", palette.tolerance}, {"colours", colours}};
 }
 
 }  // namespace drape::app

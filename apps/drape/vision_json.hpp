@@ -37,13 +37,11 @@ nlohmann::json garments_json(const std::vector<vision::GarmentResult>& garments,
 nlohmann::json cues_json(const vision::GarmentShapeCues& cues);
 
 /// A stroke palette file: {"tolerance": 40 (optional), "colours": {"<class name of
-/// labels.txt>": "#rrggbb", ...}} (docs/vision.md, "Colour-coded strokes"). It replaces the
-/// default palette. \throw drape::IoError (unreadable), drape::InvalidInput naming the file
-/// and the field (unknown class, bad colour, colours too close).
+/// labels.txt>": "#rrggbb", ...}} (docs/vision.md, "Colour-coded strokes"), which replaces
+/// the default palette; an empty `file` gives the default palette.
+/// \throw drape::IoError (unreadable), drape::InvalidInput naming the file and the field
+/// (unknown class, bad colour, colours too close).
 vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, const vision::LabelTable& table);
-
-/// The palette as such a file's JSON.
-nlohmann::json stroke_palette_json(const vision::StrokePalette& palette, const vision::LabelTable& table);
 
 /// Creates `dir` (and parents). \throw drape::IoError when it cannot.
 void make_output_dir(const std::filesystem::path& dir);
