@@ -1,10 +1,15 @@
 #include <drape/vision/image_io.hpp>
 
+#include "encoded_image_check.hpp"
+
 #include <drape/core/errors.hpp>
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <fstream>
+#include <iterator>
 #include <system_error>
+#include <vector>
 
 namespace drape::vision {
 
@@ -58,6 +63,14 @@ cv::Mat read(const std::filesystem::path& path, int flags, const std::string& wh
     require(static_cast<std::int64_t>(bytes) <= limits.max_file_bytes, what, " '",
             path.string(), "' is too large: ", bytes, " bytes (limit ", limits.max_file_bytes,
             ")");
+    // A JPEG cut short decodes without an error (the missing rows come out gray), so the
+    // encoded structure is checked first.
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError("cannot read " + what + " '" + path.string() + "': cannot open the file");
+    const std::vector<std::uint8_t> encoded((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw IoError("cannot read " + what + " '" + path.string() + "': read error");
+    const std::string defect = detail::encoded_image_defect(encoded.data(), encoded.size());
+    if (!defect.empty()) throw IoError("cannot read " + what + " '" + path.string() + "': " + defect);
     cv::Mat image;
     try {
         image = cv::imread(path.string(), flags);

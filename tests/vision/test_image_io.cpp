@@ -83,3 +83,52 @@ TEST_CASE("load_image rejects missing, broken and oversized files clearly", "[vi
     CHECK_THROWS_WITH(load_label_map(dir / "big.png", "strokes"),
                       Catch::Contains("8-bit single-channel"));
 }
+
+TEST_CASE("truncated or damaged JPEG and PNG files are refused, naming the file", "[vision][image]") {
+    const auto dir = test::scratch_dir("vision_truncated");
+    cv::Mat img(120, 90, CV_8UC3);
+    cv::randu(img, cv::Scalar::all(0), cv::Scalar::all(255));  // noise: long entropy-coded data
+    std::vector<std::uint8_t> jpg, png;
+    REQUIRE(cv::imencode(".jpg", img, jpg));
+    REQUIRE(cv::imencode(".png", img, png));
+    REQUIRE(jpg.size() > 4000);
+    write_bytes(dir / "whole.jpg", jpg);
+    write_bytes(dir / "whole.png", png);
+    CHECK(load_image(dir / "whole.jpg").size() == img.size());
+    CHECK(load_image(dir / "whole.png").size() == img.size());
+    // Bytes after the end-of-image marker are ignored, as decoders do.
+    std::vector<std::uint8_t> padded = jpg;
+    padded.insert(padded.end(), {0, 0, 0, 0});
+    write_bytes(dir / "padded.jpg", padded);
+    CHECK_NOTHROW(load_image(dir / "padded.jpg"));
+
+    const auto refused = [&](const std::string& name, const std::vector<std::uint8_t>& bytes,
+                             const std::string& defect) {
+        INFO(name);
+        write_bytes(dir / name, bytes);
+        try {
+            load_image(dir / name);
+            FAIL("accepted");
+        } catch (const IoError& e) {
+            const std::string msg = e.what();
+            CHECK(msg.find(name) != std::string::npos);
+            CHECK(msg.find(defect) != std::string::npos);
+        }
+    };
+    // Cut inside the scan data (OpenCV alone decodes this, gray below the cut), inside the
+    // headers, and just before the end-of-image marker.
+    refused("cut_3000.jpg", {jpg.begin(), jpg.begin() + 3000}, "truncated JPEG");
+    refused("cut_100.jpg", {jpg.begin(), jpg.begin() + 100}, "truncated JPEG");
+    refused("cut_eoi.jpg", {jpg.begin(), jpg.end() - 2}, "truncated JPEG");
+    refused("cut.png", {png.begin(), png.begin() + long(png.size() / 2)}, "truncated PNG");
+    refused("no_iend.png", {png.begin(), png.end() - 12}, "truncated PNG");
+    std::vector<std::uint8_t> flipped = png;
+    flipped[png.size() / 2] ^= 0x10;  // a bit inside the image data
+    refused("flipped.png", flipped, "CRC mismatch");
+    // The stroke and label readers check the same way.
+    std::vector<std::uint8_t> gray_png;
+    REQUIRE(cv::imencode(".png", cv::Mat(40, 40, CV_8UC1, cv::Scalar(255)), gray_png));
+    write_bytes(dir / "strokes_cut.png", {gray_png.begin(), gray_png.end() - 20});
+    CHECK_THROWS_AS(load_label_map(dir / "strokes_cut.png", "strokes"), IoError);
+    CHECK_THROWS_AS(load_image_unchanged(dir / "strokes_cut.png", "strokes"), IoError);
+}

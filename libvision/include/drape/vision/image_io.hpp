@@ -23,8 +23,13 @@ struct ImageLimits {
 };
 
 /// Reads a photo as 8-bit 3-channel BGR, rotated upright by its EXIF orientation.
-/// \throw drape::IoError naming the file when it is missing, unreadable or not an image;
-///        drape::InvalidInput when it breaks `limits` (naming the size and the limit).
+/// A JPEG or PNG must be complete and intact: a file cut short (no end-of-image marker, a
+/// chunk past the end) or with a damaged PNG chunk (CRC) is refused, since the decoders
+/// would fill the missing part with gray without an error. Other formats go to OpenCV as
+/// they are. The same holds for the readers below.
+/// \throw drape::IoError naming the file when it is missing, unreadable, truncated or
+///        damaged (naming the defect) or not an image; drape::InvalidInput when it breaks
+///        `limits` (naming the size and the limit).
 cv::Mat load_image(const std::filesystem::path& path, const ImageLimits& limits = {});
 
 /// Reads a class-id map (8-bit single-channel PNG, ids of LabelTable) or a stroke map
