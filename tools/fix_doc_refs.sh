@@ -32,7 +32,7 @@ if [ "${1:-}" != "--check" ]; then
     fix '(docs/vision.md, known confusion)' '(docs/vision.md, "Garment type")'
     # dressing: the 36-case dressed-state table of 2026-11-21, its readings and the
     # before/after measurements of the untangling and the armholes are notes now.
-    fix 'Prints the docs/dressing.md table;' 'Prints the table of docs/notes/dressing.md, "Dressed initial state in every pose";'
+    fix 'Prints the docs/dressing.md table;' 'Prints the docs/notes/dressing.md table;'
     fix 'The cases of the 36-case table (docs/dressing.md)' 'The cases of the 36-case table (docs/notes/dressing.md)'
     fix 'start with ~26 crossings at the crotch: docs/dressing.md.)' 'start with ~26 crossings at the crotch: docs/notes/dressing.md.)'
     fix 'Hidden: OPEN (issue 4, docs/dressing.md).' 'Hidden: OPEN (issue 4, docs/notes/dressing.md).'
