@@ -153,6 +153,18 @@ void fill_shape_params(drape_shape_params& p, int32_t gender, const double* valu
         put(p, param_field(static_cast<db::Semantic>(k)), values ? values[k] : kNaN);
 }
 
+void fill_measurements(drape_measurements& out, const db::BodyMeasurements& m) {
+    put(out, &drape_measurements::height_m, m.height_m);
+    put(out, &drape_measurements::weight_kg, m.weight_kg);
+    put(out, &drape_measurements::chest_girth_m, m.chest_girth_m);
+    put(out, &drape_measurements::waist_girth_m, m.waist_girth_m);
+    put(out, &drape_measurements::hip_girth_m, m.hip_girth_m);
+    put(out, &drape_measurements::thigh_girth_m, m.thigh_girth_m);
+    put(out, &drape_measurements::calf_girth_m, m.calf_girth_m);
+    put(out, &drape_measurements::shoulder_height_m, m.shoulder_height_m);
+    put(out, &drape_measurements::crotch_height_m, m.crotch_height_m);
+}
+
 }  // namespace
 
 extern "C" {
@@ -221,12 +233,7 @@ drape_status drape_measurements_init(drape_measurements* m) {
     if (const drape_status st = check_struct_size(*m, &drape_measurements::height_m, __func__, "m",
                                                   "drape_measurements"))
         return st;
-    for (double drape_measurements::*field :
-         {&drape_measurements::height_m, &drape_measurements::weight_kg, &drape_measurements::chest_girth_m,
-          &drape_measurements::waist_girth_m, &drape_measurements::hip_girth_m,
-          &drape_measurements::thigh_girth_m, &drape_measurements::calf_girth_m,
-          &drape_measurements::shoulder_height_m, &drape_measurements::crotch_height_m})
-        put(*m, field, 0.0);
+    fill_measurements(*m, db::BodyMeasurements{});  // all zero
     return DRAPE_OK;
 }
 
@@ -340,16 +347,7 @@ drape_status drape_body_measure(drape_body body, drape_measurements* out) {
             check_struct_size(*out, &drape_measurements::height_m, __func__, "out", "drape_measurements"))
         return st;
     return guarded(__func__, [&] {
-        const db::BodyMeasurements m = db::measure_body(*body->model, body->shaped.vertices);
-        put(*out, &drape_measurements::height_m, m.height_m);
-        put(*out, &drape_measurements::weight_kg, m.weight_kg);
-        put(*out, &drape_measurements::chest_girth_m, m.chest_girth_m);
-        put(*out, &drape_measurements::waist_girth_m, m.waist_girth_m);
-        put(*out, &drape_measurements::hip_girth_m, m.hip_girth_m);
-        put(*out, &drape_measurements::thigh_girth_m, m.thigh_girth_m);
-        put(*out, &drape_measurements::calf_girth_m, m.calf_girth_m);
-        put(*out, &drape_measurements::shoulder_height_m, m.shoulder_height_m);
-        put(*out, &drape_measurements::crotch_height_m, m.crotch_height_m);
+        fill_measurements(*out, db::measure_body(*body->model, body->shaped.vertices));
         return DRAPE_OK;
     });
 }
