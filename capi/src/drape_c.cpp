@@ -35,8 +35,16 @@ namespace db = drape::body;
 
 thread_local std::string g_last_error;
 
-drape_status fail(drape_status status, const std::string& message) {
-    g_last_error = message;
+// Records the message of a failure and returns `status`. The message is built here, inside
+// a try block: building it may itself run out of memory (also while handling bad_alloc), and
+// nothing may throw across the boundary. Then the message is left empty.
+template <class MakeMessage>
+drape_status fail(drape_status status, MakeMessage&& make_message) noexcept {
+    try {
+        g_last_error = make_message();
+    } catch (...) {
+        g_last_error.clear();
+    }
     return status;
 }
 
@@ -45,22 +53,21 @@ drape_status guarded(const char* function, F&& body) {
     try {
         return body();
     } catch (const drape::InvalidInput& e) {
-        return fail(DRAPE_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + e.what());
+        return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&] { return std::string(function) + ": " + e.what(); });
     } catch (const drape::IoError& e) {
-        return fail(DRAPE_ERROR_IO, std::string(function) + ": " + e.what());
-    } catch (const drape::Cancelled& e) {
-        return fail(DRAPE_ERROR_CANCELLED, std::string(function) + ": " + e.what());
+        return fail(DRAPE_ERROR_IO, [&] { return std::string(function) + ": " + e.what(); });
     } catch (const std::bad_alloc&) {
-        return fail(DRAPE_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory");
+        return fail(DRAPE_ERROR_OUT_OF_MEMORY, [&] { return std::string(function) + ": out of memory"; });
     } catch (const std::exception& e) {
-        return fail(DRAPE_ERROR_INTERNAL, std::string(function) + ": internal error: " + e.what());
+        return fail(DRAPE_ERROR_INTERNAL, [&] { return std::string(function) + ": internal error: " + e.what(); });
     } catch (...) {
-        return fail(DRAPE_ERROR_INTERNAL, std::string(function) + ": unknown internal error");
+        return fail(DRAPE_ERROR_INTERNAL, [&] { return std::string(function) + ": unknown internal error"; });
     }
 }
 
 #define DRAPE_REQUIRE_ARG(cond, msg) \
-    if (!(cond)) return fail(DRAPE_ERROR_INVALID_ARGUMENT, std::string(__func__) + ": " + (msg))
+    if (!(cond))                     \
+    return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&, function = __func__] { return std::string(function) + ": " + (msg); })
 
 std::shared_ptr<const db::BodyModel> default_model_ptr() {
     // Non-owning alias of the library's cached built-in model.
@@ -70,43 +77,100 @@ std::shared_ptr<const db::BodyModel> default_model_ptr() {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double* param_slot(drape_shape_params* p, db::Semantic s) {
+double drape_shape_params::*param_field(db::Semantic s) {
     switch (s) {
-        case db::Semantic::height_m: return &p->height_m;
-        case db::Semantic::weight_kg: return &p->weight_kg;
-        case db::Semantic::muscle: return &p->muscle;
-        case db::Semantic::chest_girth_m: return &p->chest_girth_m;
-        case db::Semantic::waist_girth_m: return &p->waist_girth_m;
-        case db::Semantic::hip_girth_m: return &p->hip_girth_m;
-        case db::Semantic::thigh_girth_m: return &p->thigh_girth_m;
-        case db::Semantic::calf_girth_m: return &p->calf_girth_m;
-        case db::Semantic::shoulder_height_m: return &p->shoulder_height_m;
-        case db::Semantic::crotch_height_m: return &p->crotch_height_m;
+        case db::Semantic::height_m: return &drape_shape_params::height_m;
+        case db::Semantic::weight_kg: return &drape_shape_params::weight_kg;
+        case db::Semantic::muscle: return &drape_shape_params::muscle;
+        case db::Semantic::chest_girth_m: return &drape_shape_params::chest_girth_m;
+        case db::Semantic::waist_girth_m: return &drape_shape_params::waist_girth_m;
+        case db::Semantic::hip_girth_m: return &drape_shape_params::hip_girth_m;
+        case db::Semantic::thigh_girth_m: return &drape_shape_params::thigh_girth_m;
+        case db::Semantic::calf_girth_m: return &drape_shape_params::calf_girth_m;
+        case db::Semantic::shoulder_height_m: return &drape_shape_params::shoulder_height_m;
+        case db::Semantic::crotch_height_m: return &drape_shape_params::crotch_height_m;
     }
     return nullptr;
 }
 
+// Versioned structs (docs/c-api.md, "Versioned structs"): struct_size is the size of the
+// struct the caller was compiled with, which may be older (smaller) or newer (larger) than
+// ours. A field is read or written only when it lies wholly inside struct_size; struct_size
+// itself is never changed by the library.
+template <class S, class T>
+size_t end_of(T S::*field) {
+    static const S probe{};
+    return static_cast<size_t>(reinterpret_cast<const char*>(&(probe.*field)) -
+                               reinterpret_cast<const char*>(&probe)) +
+           sizeof(T);
+}
+
+template <class S, class T>
+bool holds(const S& s, T S::*field) {
+    return end_of(field) <= s.struct_size;
+}
+
+template <class S, class T>
+void put(S& s, T S::*field, const T& value) {
+    if (holds(s, field)) s.*field = value;
+}
+
+// A struct must at least hold its first field after struct_size; a smaller struct_size
+// means the caller did not set it.
+template <class S, class T>
+drape_status check_struct_size(const S& s, T S::*first_field, const char* function, const char* arg,
+                               const char* type) {
+    if (holds(s, first_field)) return DRAPE_OK;
+    return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&] {
+        return std::string(function) + ": " + arg + "->struct_size is " + std::to_string(s.struct_size) +
+               ": set it to sizeof(" + type + ") before the call";
+    });
+}
+
 void repose(drape_body_s& b) { b.posed = db::pose_body(*b.model, b.shaped, b.pose); }
 
-// The size-query protocol: report the size, then copy (converting) if the buffer fits.
-template <class Out, class In>
-drape_status copy_out(const In* src, size_t n, Out* out, size_t capacity, size_t* required,
-                      const char* what) {
+// The size-query protocol: report the size, then copy (converting, row-major) if the buffer
+// fits. M is #rows x 3.
+template <class Out, class Matrix>
+drape_status copy_rows(const Matrix& M, Out* out, size_t capacity, size_t* required, const char* what) {
+    const size_t n = static_cast<size_t>(M.size());
     if (required) *required = n;
     if (!out) return DRAPE_OK;
     if (capacity < n)
-        return fail(DRAPE_ERROR_INVALID_ARGUMENT, std::string(what) + ": buffer holds " +
-                                                      std::to_string(capacity) + " values, " +
-                                                      std::to_string(n) + " needed");
-    for (size_t i = 0; i < n; ++i) out[i] = static_cast<Out>(src[i]);
+        return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&] {
+            return std::string(what) + ": buffer holds " + std::to_string(capacity) + " values, " +
+                   std::to_string(n) + " needed";
+        });
+    const Eigen::Index cols = M.cols();
+    for (Eigen::Index r = 0; r < M.rows(); ++r)
+        for (Eigen::Index c = 0; c < cols; ++c) out[r * cols + c] = static_cast<Out>(M(r, c));
     return DRAPE_OK;
+}
+
+void fill_shape_params(drape_shape_params& p, int32_t gender, const double* values) {
+    put(p, &drape_shape_params::gender, gender);
+    for (int k = 0; k < db::kSemanticCount; ++k)
+        put(p, param_field(static_cast<db::Semantic>(k)), values ? values[k] : kNaN);
+}
+
+void fill_measurements(drape_measurements& out, const db::BodyMeasurements& m) {
+    put(out, &drape_measurements::height_m, m.height_m);
+    put(out, &drape_measurements::weight_kg, m.weight_kg);
+    put(out, &drape_measurements::chest_girth_m, m.chest_girth_m);
+    put(out, &drape_measurements::waist_girth_m, m.waist_girth_m);
+    put(out, &drape_measurements::hip_girth_m, m.hip_girth_m);
+    put(out, &drape_measurements::thigh_girth_m, m.thigh_girth_m);
+    put(out, &drape_measurements::calf_girth_m, m.calf_girth_m);
+    put(out, &drape_measurements::shoulder_height_m, m.shoulder_height_m);
+    put(out, &drape_measurements::crotch_height_m, m.crotch_height_m);
 }
 
 }  // namespace
 
 extern "C" {
 
-const char* drape_version(void) { return "0.1.0"; }
+// DRAPE_VERSION_STRING is CMake's PROJECT_VERSION (capi/CMakeLists.txt).
+const char* drape_version(void) { return DRAPE_VERSION_STRING; }
 
 const char* drape_status_string(drape_status status) {
     switch (status) {
@@ -157,16 +221,19 @@ void drape_body_model_destroy(drape_body_model model) { delete model; }
 
 drape_status drape_shape_params_init(drape_shape_params* p) {
     DRAPE_REQUIRE_ARG(p, "params must not be NULL");
-    p->struct_size = sizeof(drape_shape_params);
-    p->gender = DRAPE_GENDER_UNSPECIFIED;
-    for (int k = 0; k < db::kSemanticCount; ++k) *param_slot(p, static_cast<db::Semantic>(k)) = kNaN;
+    if (const drape_status st = check_struct_size(*p, &drape_shape_params::gender, __func__, "params",
+                                                  "drape_shape_params"))
+        return st;
+    fill_shape_params(*p, DRAPE_GENDER_UNSPECIFIED, nullptr);
     return DRAPE_OK;
 }
 
 drape_status drape_measurements_init(drape_measurements* m) {
     DRAPE_REQUIRE_ARG(m, "measurements must not be NULL");
-    *m = drape_measurements{};
-    m->struct_size = sizeof(drape_measurements);
+    if (const drape_status st = check_struct_size(*m, &drape_measurements::height_m, __func__, "m",
+                                                  "drape_measurements"))
+        return st;
+    fill_measurements(*m, db::BodyMeasurements{});  // all zero
     return DRAPE_OK;
 }
 
@@ -194,20 +261,20 @@ void drape_body_destroy(drape_body body) { delete body; }
 
 drape_status drape_body_set_shape(drape_body body, const drape_shape_params* params) {
     DRAPE_REQUIRE_ARG(body && params, "body and params must not be NULL");
-    DRAPE_REQUIRE_ARG(params->struct_size >= sizeof(drape_shape_params),
-                      "params->struct_size is " + std::to_string(params->struct_size) +
-                          ": call drape_shape_params_init first");
+    if (const drape_status st = check_struct_size(*params, &drape_shape_params::gender, __func__, "params",
+                                                  "drape_shape_params"))
+        return st;
     return guarded(__func__, [&] {
         db::SemanticRequest request;
+        // Fields beyond the caller's struct_size are "not given".
         if (params->gender == DRAPE_GENDER_FEMALE) request.gender = db::Gender::female;
         else if (params->gender == DRAPE_GENDER_MALE) request.gender = db::Gender::male;
         else if (params->gender != DRAPE_GENDER_UNSPECIFIED)
             throw drape::InvalidInput("gender = " + std::to_string(static_cast<int>(params->gender)) +
                                       " is not a drape_gender value");
-        drape_shape_params copy = *params;
         for (int k = 0; k < db::kSemanticCount; ++k) {
-            const double value = *param_slot(&copy, static_cast<db::Semantic>(k));
-            if (!std::isnan(value)) request.values[k] = value;
+            const auto field = param_field(static_cast<db::Semantic>(k));
+            if (holds(*params, field) && !std::isnan(params->*field)) request.values[k] = params->*field;
         }
         const db::SemanticShape shape = body->model->prior.complete(request);
         db::ShapedBody shaped;
@@ -217,17 +284,18 @@ drape_status drape_body_set_shape(drape_body body, const drape_shape_params* par
         repose(*body);
         if (summary.termination == db::ShapeTermination::failed ||
             summary.termination == db::ShapeTermination::max_iterations)
-            return fail(DRAPE_ERROR_NO_CONVERGENCE, "drape_body_set_shape: " + summary.brief_report());
+            return fail(DRAPE_ERROR_NO_CONVERGENCE, [&] { return "drape_body_set_shape: " + summary.brief_report(); });
         return DRAPE_OK;
     });
 }
 
 drape_status drape_body_get_shape(drape_body body, drape_shape_params* out) {
     DRAPE_REQUIRE_ARG(body && out, "body and out_params must not be NULL");
-    drape_shape_params_init(out);
-    out->gender = body->shape.gender == db::Gender::female ? DRAPE_GENDER_FEMALE : DRAPE_GENDER_MALE;
-    for (int k = 0; k < db::kSemanticCount; ++k)
-        *param_slot(out, static_cast<db::Semantic>(k)) = body->shape.values[k];
+    if (const drape_status st = check_struct_size(*out, &drape_shape_params::gender, __func__, "out_params",
+                                                  "drape_shape_params"))
+        return st;
+    fill_shape_params(*out, body->shape.gender == db::Gender::female ? DRAPE_GENDER_FEMALE : DRAPE_GENDER_MALE,
+                      body->shape.values.data());
     return DRAPE_OK;
 }
 
@@ -257,38 +325,29 @@ drape_status drape_body_get_counts(drape_body body, size_t* vertex_count, size_t
     return DRAPE_OK;
 }
 
+// The buffers are written without temporaries; the barrier still covers all the work.
 drape_status drape_body_get_vertices(drape_body body, double* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> V = body->posed.vertices;
-    return copy_out(V.data(), static_cast<size_t>(V.size()), out, capacity, required, __func__);
+    return guarded(__func__, [&] { return copy_rows(body->posed.vertices, out, capacity, required, __func__); });
 }
 
 drape_status drape_body_get_joints(drape_body body, double* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    const Eigen::Matrix<double, db::kJointCount, 3, Eigen::RowMajor> J = body->posed.joints;
-    return copy_out(J.data(), static_cast<size_t>(J.size()), out, capacity, required, __func__);
+    return guarded(__func__, [&] { return copy_rows(body->posed.joints, out, capacity, required, __func__); });
 }
 
 drape_status drape_body_get_faces(drape_body body, int32_t* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> F = body->model->faces;
-    return copy_out(F.data(), static_cast<size_t>(F.size()), out, capacity, required, __func__);
+    return guarded(__func__, [&] { return copy_rows(body->model->faces, out, capacity, required, __func__); });
 }
 
 drape_status drape_body_measure(drape_body body, drape_measurements* out) {
     DRAPE_REQUIRE_ARG(body && out, "body and out must not be NULL");
+    if (const drape_status st =
+            check_struct_size(*out, &drape_measurements::height_m, __func__, "out", "drape_measurements"))
+        return st;
     return guarded(__func__, [&] {
-        const db::BodyMeasurements m = db::measure_body(*body->model, body->shaped.vertices);
-        drape_measurements_init(out);
-        out->height_m = m.height_m;
-        out->weight_kg = m.weight_kg;
-        out->chest_girth_m = m.chest_girth_m;
-        out->waist_girth_m = m.waist_girth_m;
-        out->hip_girth_m = m.hip_girth_m;
-        out->thigh_girth_m = m.thigh_girth_m;
-        out->calf_girth_m = m.calf_girth_m;
-        out->shoulder_height_m = m.shoulder_height_m;
-        out->crotch_height_m = m.crotch_height_m;
+        fill_measurements(*out, db::measure_body(*body->model, body->shaped.vertices));
         return DRAPE_OK;
     });
 }

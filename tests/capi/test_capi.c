@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
     CHECK(body != NULL);
     if (!body) return 1;
 
+    params.struct_size = sizeof params;
     CHECK(drape_shape_params_init(&params) == DRAPE_OK);
     params.gender = DRAPE_GENDER_MALE;
     params.height_m = 1.80;
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
     CHECK(fabs(params.height_m - 1.80) < 1e-12);
     CHECK(params.chest_girth_m > 0.8 && params.chest_girth_m < 1.3); /* predicted */
 
+    m.struct_size = sizeof m;
     CHECK(drape_measurements_init(&m) == DRAPE_OK);
     CHECK(drape_body_measure(body, &m) == DRAPE_OK);
     CHECK(fabs(m.height_m - 1.80) < 0.005);

@@ -7,8 +7,10 @@
  *    a size query (pass NULL to learn the size) or to handles the caller destroys.
  *  - *_destroy(NULL) is a no-op. Distinct handles may be used from distinct threads at
  *    once; one handle must not be used from two threads at the same time.
- *  - Options/parameter structs start with uint32_t struct_size and are filled by their
- *    *_init() function, so that fields can be appended without breaking old callers.
+ *  - Options/parameter structs start with uint32_t struct_size. The caller sets it to
+ *    sizeof the struct it was compiled with, then calls the *_init() function. The library
+ *    never changes struct_size and reads or writes only the fields that lie wholly inside
+ *    it, so fields can be appended without breaking callers built against older headers.
  *  - Units: metres, kilograms, radians. Frame: +Y up, the body faces +Z, its left is +X.
  */
 #ifndef DRAPE_DRAPE_H
@@ -27,11 +29,11 @@ typedef enum drape_status {
     DRAPE_ERROR_IO = 2,
     DRAPE_ERROR_NO_CONVERGENCE = 3,
     DRAPE_ERROR_OUT_OF_MEMORY = 4,
-    DRAPE_ERROR_CANCELLED = 5,
+    DRAPE_ERROR_CANCELLED = 5, /* a long call's progress callback asked to stop */
     DRAPE_ERROR_INTERNAL = 6
 } drape_status;
 
-/** Library version, "MAJOR.MINOR.PATCH". Never NULL. */
+/** Library version, "MAJOR.MINOR.PATCH" (the CMake project version). Never NULL. */
 const char* drape_version(void);
 /** A fixed English description of a status code. Never NULL. */
 const char* drape_status_string(drape_status status);
@@ -78,7 +80,8 @@ typedef struct drape_shape_params {
     double crotch_height_m;
 } drape_shape_params;
 
-/** Sets struct_size and every value to "not given". */
+/** Sets every value (that fits in params->struct_size) to "not given" and gender to
+ *  DRAPE_GENDER_UNSPECIFIED. Set params->struct_size = sizeof(drape_shape_params) first. */
 drape_status drape_shape_params_init(drape_shape_params* params);
 
 /** Measurements taken on the body mesh at rest, like a tailor's tape. */
@@ -94,6 +97,7 @@ typedef struct drape_measurements {
     double shoulder_height_m;
     double crotch_height_m;
 } drape_measurements;
+/** Zeroes every value (that fits in m->struct_size). Set m->struct_size first. */
 drape_status drape_measurements_init(drape_measurements* m);
 
 /** Number of skeleton joints (22) and their names (index order of the pose arrays). */
@@ -109,7 +113,8 @@ void drape_body_destroy(drape_body body);
  *  girth and height on the mesh. DRAPE_ERROR_NO_CONVERGENCE if the measurements could not
  *  be matched (the body is still shaped as closely as possible). */
 drape_status drape_body_set_shape(drape_body body, const drape_shape_params* params);
-/** The complete parameters in use (given + predicted). */
+/** The complete parameters in use (given + predicted), as far as out_params->struct_size
+ *  holds them. */
 drape_status drape_body_get_shape(drape_body body, drape_shape_params* out_params);
 
 /** Poses the body. rotations: joint_count x 3 axis-angle vectors (radians, parent frame,

@@ -3,7 +3,9 @@
 // Broken preconditions throw InvalidInput with a message naming the argument and the
 // value; failed reads and writes throw IoError naming the file. Expected numerical
 // outcomes (no convergence, a failed step) are never exceptions: they go into the
-// Summary struct of the algorithm that produced them.
+// Summary struct of the algorithm that produced them. So is cancellation by a progress
+// callback: it is a Summary termination value (e.g. garment::DrapeTermination::cancelled),
+// which the C API reports as DRAPE_ERROR_CANCELLED.
 #pragma once
 
 #include <sstream>
@@ -22,12 +24,6 @@ public:
 class IoError : public std::runtime_error {
 public:
     explicit IoError(const std::string& what) : std::runtime_error(what) {}
-};
-
-/// An operation was cancelled by the caller's progress callback.
-class Cancelled : public std::runtime_error {
-public:
-    explicit Cancelled(const std::string& what) : std::runtime_error(what) {}
 };
 
 namespace detail {
