@@ -19,6 +19,7 @@
 #include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/eval_bodies.hpp>
+#include <drape/garment/garment_export.hpp>
 #include <drape/garment/dress_outfit.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/garment_mesh.hpp>
@@ -75,56 +76,6 @@ body::Pose resolve_pose(const std::string& name) {
     if (name == "t_pose") return body::named_pose(body::NamedPose::t_pose);
     if (fs::path(name).extension() == ".json") return pose_from_json(read_json_file(name), name);
     throw InvalidInput("--pose '" + name + "' is not a_pose, arms_down, walking, t_pose or a POSE.json file");
-}
-
-/// A glTF 2.0 binary with one mesh: float positions, uv (TEXCOORD_0) and uint32 indices.
-void write_garment_glb(const fs::path& path, const garment::GarmentMesh& m, const Eigen::MatrixX3d& X) {
-    const auto nv = size_t(X.rows()), nf = size_t(m.cloth.face_count());
-    std::vector<float> pos(3 * nv), uv(2 * nv);
-    std::vector<std::uint32_t> idx(3 * nf);
-    for (size_t v = 0; v < nv; ++v) {
-        for (int k = 0; k < 3; ++k) pos[3 * v + size_t(k)] = float(X(Eigen::Index(v), k));
-        uv[2 * v] = float(m.uv(Eigen::Index(v), 0));
-        uv[2 * v + 1] = float(1.0 - m.uv(Eigen::Index(v), 1));  // glTF's v runs downwards
-    }
-    for (size_t f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k) idx[3 * f + size_t(k)] = std::uint32_t(m.cloth.faces(Eigen::Index(f), k));
-    const Eigen::Vector3d lo = X.colwise().minCoeff(), hi = X.colwise().maxCoeff();
-    const size_t pos_bytes = 4 * pos.size(), uv_bytes = 4 * uv.size(), idx_bytes = 4 * idx.size();
-    const nlohmann::json gltf = {
-        {"asset", {{"version", "2.0"}, {"generator", "drape dress"}}},
-        {"scene", 0},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"nodes", {{{"mesh", 0}, {"name", "garment"}}}},
-        {"meshes", {{{"name", "garment"},
-                     {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
-        {"buffers", {{{"byteLength", pos_bytes + uv_bytes + idx_bytes}}}},
-        {"bufferViews",
-         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}, {"target", 34962}},
-          {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", uv_bytes}, {"target", 34962}},
-          {{"buffer", 0}, {"byteOffset", pos_bytes + uv_bytes}, {"byteLength", idx_bytes}, {"target", 34963}}}},
-        {"accessors",
-         {{{"bufferView", 0}, {"componentType", 5126}, {"count", nv}, {"type", "VEC3"},
-           {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}},
-          {{"bufferView", 1}, {"componentType", 5126}, {"count", nv}, {"type", "VEC2"}},
-          {{"bufferView", 2}, {"componentType", 5125}, {"count", 3 * nf}, {"type", "SCALAR"}}}}};
-    std::string json = gltf.dump();
-    while (json.size() % 4) json += ' ';
-    const size_t bin_bytes = pos_bytes + uv_bytes + idx_bytes;  // multiple of 4
-    std::string out;
-    auto put32 = [&](std::uint32_t x) { out.append(reinterpret_cast<const char*>(&x), 4); };
-    put32(0x46546C67u);  // "glTF" (little endian)
-    put32(2);
-    put32(std::uint32_t(12 + 8 + json.size() + 8 + bin_bytes));
-    put32(std::uint32_t(json.size()));
-    put32(0x4E4F534Au);  // "JSON"
-    out += json;
-    put32(std::uint32_t(bin_bytes));
-    put32(0x004E4942u);  // "BIN\0"
-    out.append(reinterpret_cast<const char*>(pos.data()), pos_bytes);
-    out.append(reinterpret_cast<const char*>(uv.data()), uv_bytes);
-    out.append(reinterpret_cast<const char*>(idx.data()), idx_bytes);
-    write_text_atomically(path, out);
 }
 
 /// Body and garment from the front-left, on a floor, studio light.
@@ -279,7 +230,7 @@ void run_dress(const DressArgs& requested) {
     if (args.save_dressed) {  // the initial state the simulation starts from
         Eigen::MatrixX3d D;
         garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), options.dressing, D);
-        write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
+        garment::write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
         if (!args.no_render)
             write_render(dir / "dressed.png", body::pose_body(model, shaped, body::Pose::rest()).vertices, model.faces,
                          {&mesh}, {D});
@@ -289,8 +240,8 @@ void run_dress(const DressArgs& requested) {
     std::cout << "drape dress: " << pattern.name << ", " << draped.brief_report() << "\n";
 
     const Eigen::MatrixX3d& X = out.positions[0];
-    write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
-    write_garment_glb(dir / "garment.glb", mesh, X);
+    garment::write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
+    garment::write_garment_glb(dir / "garment.glb", mesh, X);
     if (!args.no_render) write_render(dir / "render.png", out.body_vertices, model.faces, {&mesh}, {X});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json report = drape_report(args, material_source, draped);
@@ -371,9 +322,9 @@ void run_dress_outfit(const DressArgs& args) {
     std::vector<const garment::GarmentMesh*> mesh_ptrs;
     for (size_t g = 0; g < types.size(); ++g) {
         const std::string name = garment_type_name(types[g]);
-        write_garment_obj(dir / ("garment_" + name + ".obj"), out.patterns[g], out.meshes[g], out.positions[g],
+        garment::write_garment_obj(dir / ("garment_" + name + ".obj"), out.patterns[g], out.meshes[g], out.positions[g],
                           "draped " + name + ", world");
-        write_garment_glb(dir / ("garment_" + name + ".glb"), out.meshes[g], out.positions[g]);
+        garment::write_garment_glb(dir / ("garment_" + name + ".glb"), out.meshes[g], out.positions[g]);
         const garment::GarmentStateCheck& c = out.checks[g];
         garments.push_back({{"garment", name},
                             {"layer", g == 0 ? "inner" : "outer"},
