@@ -9,6 +9,7 @@
 #include <drape/core/errors.hpp>
 #include <drape/render/rasterize.hpp>
 #include <drape/render/renderer.hpp>
+#include <drape/vision/segmentation_score.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -72,11 +73,6 @@ RasterOptions size(int w, int h) {
     return o;
 }
 
-double iou(const cv::Mat& a, const cv::Mat& b) {
-    const int u = cv::countNonZero(a | b);
-    return u > 0 ? double(cv::countNonZero(a & b)) / u : 1.0;
-}
-
 }  // namespace
 
 TEST_CASE("a box projects to its analytic rectangle (weak perspective and pinhole)", "[render][rasterize]") {
@@ -109,7 +105,7 @@ TEST_CASE("a box projects to its analytic rectangle (weak perspective and pinhol
     }
 }
 
-TEST_CASE("a sphere projects to its analytic disk; pinhole sees it larger than weak perspective",
+TEST_CASE("a sphere projects to its analytic disk, larger with a pinhole than with weak perspective",
           "[render][rasterize]") {
     // Sphere of radius r at distance d on the optical axis: weak perspective with s = f / d
     // gives a disk of radius s r; the pinhole's tangent cone gives f r / sqrt(d^2 - r^2).
@@ -220,7 +216,7 @@ TEST_CASE("the rasteriser's labels agree with the path tracer's on a body + garm
     REQUIRE(rs.visible_pixels[1] > 20000);
     REQUIRE(rs.visible_pixels[0] > 40000);
     for (const int label : {0, 41, 51}) {
-        const double v = iou(raster.labels == label, traced.labels == label);
+        const double v = drape::vision::iou(raster.labels == label, traced.labels == label);
         INFO("label " << label << ": IoU " << v << ", rasterised " << cv::countNonZero(raster.labels == label)
                       << " px, traced " << cv::countNonZero(traced.labels == label) << " px");
         CHECK(v >= 0.98);
@@ -230,7 +226,7 @@ TEST_CASE("the rasteriser's labels agree with the path tracer's on a body + garm
     CHECK(cv::countNonZero(raster.coverage[0] & raster.visible[1]) > 0.75 * rs.visible_pixels[1]);
 }
 
-TEST_CASE("rasterize: invalid input throws InvalidInput; nothing in view is a result", "[render][rasterize]") {
+TEST_CASE("rasterize: invalid input throws InvalidInput, nothing in view is a result", "[render][rasterize]") {
     const std::vector<Mesh> ok = {square(0.2, 1)};
     const BodyCamera cam = weak_camera(100.0, {50, 50});
     RasterImages img;
