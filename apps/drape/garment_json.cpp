@@ -8,8 +8,6 @@
 #include "json_io.hpp"
 
 #include <drape/core/errors.hpp>
-#include <drape/garment/circle_skirt.hpp>
-#include <drape/garment/tshirt.hpp>
 
 namespace drape::app {
 
@@ -43,24 +41,6 @@ nlohmann::json write_group(const Sizing& sizing, const Table& table) {
 
 }  // namespace
 
-GarmentType garment_type_from_name(const std::string& name) {
-    if (name == "skirt") return GarmentType::skirt;
-    if (name == "pants") return GarmentType::pants;
-    if (name == "tshirt") return GarmentType::tshirt;
-    if (name == "dress") return GarmentType::dress;
-    throw InvalidInput("unknown garment '" + name + "' (expected skirt, pants, tshirt or dress)");
-}
-
-std::string garment_type_name(GarmentType type) {
-    switch (type) {
-        case GarmentType::skirt: return "skirt";
-        case GarmentType::pants: return "pants";
-        case GarmentType::tshirt: return "tshirt";
-        case GarmentType::dress: return "dress";
-    }
-    return "?";
-}
-
 GarmentSizing sizing_from_json(GarmentType type, const nlohmann::json& j, const std::string& file) {
     GarmentSizing g;
     g.type = type;
@@ -89,49 +69,6 @@ nlohmann::json to_json(const GarmentSizing& g) {
                     {"skirt", write_group(g.dress.skirt, garment::SkirtSizing::parameters())}};
     }
     return {};
-}
-
-garment::Pattern make_pattern(const GarmentSizing& g) {
-    switch (g.type) {
-        case GarmentType::skirt: return garment::make_circle_skirt(g.skirt);
-        case GarmentType::pants: return garment::make_pants(g.pants);
-        case GarmentType::tshirt: return garment::make_tshirt(g.tshirt);
-        case GarmentType::dress: return garment::make_dress(g.dress);
-    }
-    throw InvalidInput("unknown garment type");
-}
-
-GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured) {
-    GarmentSizing g;
-    g.type = type;
-    switch (type) {
-        case GarmentType::skirt: g.skirt = garment::propose_skirt_sizing(measured); break;
-        case GarmentType::pants: g.pants = garment::propose_pants_sizing(measured); break;
-        case GarmentType::tshirt: g.tshirt = garment::propose_tshirt_sizing(measured); break;
-        case GarmentType::dress: g.dress = garment::propose_dress_sizing(measured); break;
-    }
-    return g;
-}
-
-GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured,
-                              double skirt_waistband_girth_m) {
-    GarmentSizing g = proposed_sizing(type, measured);
-    if (type == GarmentType::skirt) g.skirt = garment::propose_skirt_sizing(measured, skirt_waistband_girth_m);
-    return g;
-}
-
-GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
-                              const body::BodyMeasurements& measured) {
-    if (type == GarmentType::skirt) return proposed_sizing(type, measured, garment::skirt_waistband(model, shaped).girth_m);
-    return fit_top_to_body(proposed_sizing(type, measured), model, shaped);
-}
-
-GarmentSizing fit_top_to_body(GarmentSizing g, const body::BodyModel& model, const body::ShapedBody& shaped) {
-    if (g.type != GarmentType::tshirt && g.type != GarmentType::dress) return g;
-    garment::TShirtSizing& top = g.type == GarmentType::tshirt ? g.tshirt : g.dress.bodice;
-    if (top.l1 > 0) top = garment::fit_sleeves(top, garment::upper_arm_girth(model, shaped, top.l1));
-    top = garment::fit_neckline(top, garment::neck_girth(model, shaped));
-    return g;
 }
 
 void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,

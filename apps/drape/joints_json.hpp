@@ -27,7 +27,7 @@ struct JointsFile {
 
 /// Reads and checks a joints file for a `width` x `height` photo: known keys only, 14
 /// finite [x, y] pairs inside the photo, `joint_names` and `image_size` (if present)
-/// consistent. 	hrow drape::InvalidInput naming the file, field and value; IoError.
+/// consistent. \throw drape::InvalidInput naming the file, field and value; IoError.
 JointsFile read_joints_file(const std::filesystem::path& path, int width, int height);
 
 }  // namespace drape::app

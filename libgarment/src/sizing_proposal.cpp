@@ -214,4 +214,37 @@ DressSizing propose_dress_sizing(const body::BodyMeasurements& m, const Ease& ea
     return g;
 }
 
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured) {
+    GarmentSizing g;
+    g.type = type;
+    switch (type) {
+        case GarmentType::skirt: g.skirt = propose_skirt_sizing(measured); break;
+        case GarmentType::pants: g.pants = propose_pants_sizing(measured); break;
+        case GarmentType::tshirt: g.tshirt = propose_tshirt_sizing(measured); break;
+        case GarmentType::dress: g.dress = propose_dress_sizing(measured); break;
+    }
+    return g;
+}
+
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured,
+                              double skirt_waistband_girth_m) {
+    GarmentSizing g = proposed_sizing(type, measured);
+    if (type == GarmentType::skirt) g.skirt = propose_skirt_sizing(measured, skirt_waistband_girth_m);
+    return g;
+}
+
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
+                              const body::BodyMeasurements& measured) {
+    if (type == GarmentType::skirt) return proposed_sizing(type, measured, skirt_waistband(model, shaped).girth_m);
+    return fit_top_to_body(proposed_sizing(type, measured), model, shaped);
+}
+
+GarmentSizing fit_top_to_body(GarmentSizing g, const body::BodyModel& model, const body::ShapedBody& shaped) {
+    if (g.type != GarmentType::tshirt && g.type != GarmentType::dress) return g;
+    TShirtSizing& top = g.type == GarmentType::tshirt ? g.tshirt : g.dress.bodice;
+    if (top.l1 > 0) top = fit_sleeves(top, upper_arm_girth(model, shaped, top.l1));
+    top = fit_neckline(top, neck_girth(model, shaped));
+    return g;
+}
+
 }  // namespace drape::garment

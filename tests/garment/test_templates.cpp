@@ -3,6 +3,8 @@
 #include <drape/core/errors.hpp>
 #include <drape/garment/circle_skirt.hpp>
 #include <drape/garment/dress.hpp>
+#include <drape/garment/garment_sizing.hpp>
+#include <drape/garment/garment_type.hpp>
 #include <drape/garment/pants.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 #include <drape/garment/tshirt.hpp>
@@ -159,4 +161,31 @@ TEST_CASE("sizing proposals from the default body are valid patterns", "[garment
     Ease ease;
     ease.hip_cm = 100;
     CHECK(error_of([&] { propose_pants_sizing(m, ease); }).find("hip_cm") != std::string::npos);
+}
+
+TEST_CASE("garment types: names round-trip, unknown names are rejected", "[garment][templates]") {
+    for (GarmentType t : {GarmentType::skirt, GarmentType::pants, GarmentType::tshirt, GarmentType::dress})
+        CHECK(garment_type_from_name(garment_type_name(t)) == t);
+    CHECK(error_of([] { garment_type_from_name("kilt"); }).find("'kilt'") != std::string::npos);
+}
+
+TEST_CASE("any-template sizing: proposals and patterns per type", "[garment][templates]") {
+    const auto& model = drape::body::BodyModel::default_model();
+    const drape::body::ShapedBody shaped =
+        drape::body::shape_from_coefficients(model, Eigen::VectorXd::Zero(model.shape_count()));
+    const auto m = drape::body::measure_body(model, shaped.vertices);
+    CHECK(proposed_sizing(GarmentType::pants, m).pants.w2 == propose_pants_sizing(m).w2);
+    CHECK(proposed_sizing(GarmentType::skirt, m, 0.8).skirt.l1 == propose_skirt_sizing(m, 0.8).l1);
+    for (GarmentType t : {GarmentType::skirt, GarmentType::pants, GarmentType::tshirt, GarmentType::dress}) {
+        const GarmentSizing g = proposed_sizing(t, model, shaped, m);
+        CHECK(g.type == t);
+        CHECK_FALSE(make_pattern(g).panels.empty());
+    }
+    // A top is fitted to the body: its sleeve opening and neckline are never narrower than proposed.
+    const GarmentSizing tee = proposed_sizing(GarmentType::tshirt, model, shaped, m);
+    CHECK(tee.tshirt.w1 >= propose_tshirt_sizing(m).w1);
+    CHECK(tee.tshirt.r >= propose_tshirt_sizing(m).r);
+    // fit_top_to_body leaves bottoms unchanged.
+    const GarmentSizing pants = fit_top_to_body(proposed_sizing(GarmentType::pants, m), model, shaped);
+    CHECK(pants.pants.w1 == propose_pants_sizing(m).w1);
 }

@@ -183,7 +183,7 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
 /// pose where dressing cannot start clean (arms down: a sleeve around an arm that touches
 /// the torso) — dress in the rest A-pose, move to the pose (see pose_path()).
 /// \param body_path >= 1 body states, each #B x 3 with the same faces.
-/// 	hrow drape::InvalidInput as above, or if the path is empty or its shapes differ.
+/// \throw drape::InvalidInput as above, or if the path is empty or its shapes differ.
 DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
                            const std::vector<Eigen::MatrixX3d>& body_path, const Eigen::MatrixX3i& body_faces,
                            const cloth::Material& material, const DrapeOptions& options,

@@ -84,7 +84,7 @@ struct GarmentStateCheck {
 
 /// Checks `positions` (#V x 3, world, metres) of `mesh` against the body mesh.
 /// \param layer_gap_m the contact thickness the state should keep between layers, > 0.
-/// 	hrow drape::InvalidInput on size mismatches or non-finite positions.
+/// \throw drape::InvalidInput on size mismatches or non-finite positions.
 GarmentStateCheck check_garment_state(const GarmentMesh& mesh, const Eigen::MatrixX3d& positions,
                                       const Eigen::MatrixX3d& body_vertices,
                                       const Eigen::MatrixX3i& body_faces, double layer_gap_m = 0.005);

@@ -5,6 +5,7 @@
 #include <drape/body/measurements.hpp>
 #include <drape/garment/circle_skirt.hpp>
 #include <drape/garment/dress.hpp>
+#include <drape/garment/garment_sizing.hpp>
 #include <drape/garment/pants.hpp>
 #include <drape/garment/tshirt.hpp>
 
@@ -54,7 +55,7 @@ SkirtWaistband skirt_waist_fit(const body::BodyModel& model, const body::ShapedB
 
 /// A skirt whose waist is `waistband_girth_m` (skirt_waistband) plus `ease_cm`;
 /// its length from the stature in `m`.
-/// 	hrow drape::InvalidInput if the measurements or the girth are not positive or the ease
+/// \throw drape::InvalidInput if the measurements or the girth are not positive or the ease
 ///        is not in [0, 60] cm.
 SkirtSizing propose_skirt_sizing(const body::BodyMeasurements& m, double waistband_girth_m,
                                  double ease_cm = kSkirtWaistEaseCm);
@@ -90,5 +91,28 @@ double neck_girth(const body::BodyModel& model, const body::ShapedBody& shaped);
 /// arcs together) is at least `neck_girth_m` + `ease_cm`, as far as the shoulder seams keep
 /// 5 cm (2 r <= w2 - 10) and r stays in its range.
 TShirtSizing fit_neckline(TShirtSizing g, double neck_girth_m, double ease_cm = kNecklineEaseCm);
+
+/// The sizing `type`'s template proposes for a body (propose_*_sizing with the default ease).
+/// \throw drape::InvalidInput as propose_*_sizing.
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured);
+
+/// The same, but a skirt's waist from `skirt_waistband_girth_m` (skirt_waistband) plus
+/// kSkirtWaistEaseCm; other templates as above.
+/// \throw drape::InvalidInput as propose_*_sizing.
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyMeasurements& measured,
+                              double skirt_waistband_girth_m);
+
+/// The same with the waistband girth measured on `shaped` and a top fitted to its arms and
+/// neck (fit_top_to_body): the sizing drape dress --sizing auto and eval-dress use.
+/// \param measured the measurements of `shaped` (body::measure_body, as shape_body reports).
+/// \throw drape::InvalidInput if `shaped` does not fit the model, or as propose_*_sizing.
+GarmentSizing proposed_sizing(GarmentType type, const body::BodyModel& model, const body::ShapedBody& shaped,
+                              const body::BodyMeasurements& measured);
+
+/// `g` (a t-shirt or a dress; others unchanged) with the sleeve opening widened to the arm
+/// of `shaped` + kSleeveEaseCm and the neckline to its neck + kNecklineEaseCm, where
+/// narrower (upper_arm_girth / fit_sleeves, neck_girth / fit_neckline).
+/// \throw drape::InvalidInput if `shaped` does not fit the model.
+GarmentSizing fit_top_to_body(GarmentSizing g, const body::BodyModel& model, const body::ShapedBody& shaped);
 
 }  // namespace drape::garment
