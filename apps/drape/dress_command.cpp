@@ -19,6 +19,8 @@
 #include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/eval_bodies.hpp>
+#include <drape/garment/garment_export.hpp>
+#include <drape/garment/dress_outfit.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern_dxf.hpp>
@@ -74,56 +76,6 @@ body::Pose resolve_pose(const std::string& name) {
     if (name == "t_pose") return body::named_pose(body::NamedPose::t_pose);
     if (fs::path(name).extension() == ".json") return pose_from_json(read_json_file(name), name);
     throw InvalidInput("--pose '" + name + "' is not a_pose, arms_down, walking, t_pose or a POSE.json file");
-}
-
-/// A glTF 2.0 binary with one mesh: float positions, uv (TEXCOORD_0) and uint32 indices.
-void write_garment_glb(const fs::path& path, const garment::GarmentMesh& m, const Eigen::MatrixX3d& X) {
-    const auto nv = size_t(X.rows()), nf = size_t(m.cloth.face_count());
-    std::vector<float> pos(3 * nv), uv(2 * nv);
-    std::vector<std::uint32_t> idx(3 * nf);
-    for (size_t v = 0; v < nv; ++v) {
-        for (int k = 0; k < 3; ++k) pos[3 * v + size_t(k)] = float(X(Eigen::Index(v), k));
-        uv[2 * v] = float(m.uv(Eigen::Index(v), 0));
-        uv[2 * v + 1] = float(1.0 - m.uv(Eigen::Index(v), 1));  // glTF's v runs downwards
-    }
-    for (size_t f = 0; f < nf; ++f)
-        for (int k = 0; k < 3; ++k) idx[3 * f + size_t(k)] = std::uint32_t(m.cloth.faces(Eigen::Index(f), k));
-    const Eigen::Vector3d lo = X.colwise().minCoeff(), hi = X.colwise().maxCoeff();
-    const size_t pos_bytes = 4 * pos.size(), uv_bytes = 4 * uv.size(), idx_bytes = 4 * idx.size();
-    const nlohmann::json gltf = {
-        {"asset", {{"version", "2.0"}, {"generator", "drape dress"}}},
-        {"scene", 0},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"nodes", {{{"mesh", 0}, {"name", "garment"}}}},
-        {"meshes", {{{"name", "garment"},
-                     {"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}}}}}}},
-        {"buffers", {{{"byteLength", pos_bytes + uv_bytes + idx_bytes}}}},
-        {"bufferViews",
-         {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos_bytes}, {"target", 34962}},
-          {{"buffer", 0}, {"byteOffset", pos_bytes}, {"byteLength", uv_bytes}, {"target", 34962}},
-          {{"buffer", 0}, {"byteOffset", pos_bytes + uv_bytes}, {"byteLength", idx_bytes}, {"target", 34963}}}},
-        {"accessors",
-         {{{"bufferView", 0}, {"componentType", 5126}, {"count", nv}, {"type", "VEC3"},
-           {"min", {lo.x(), lo.y(), lo.z()}}, {"max", {hi.x(), hi.y(), hi.z()}}},
-          {{"bufferView", 1}, {"componentType", 5126}, {"count", nv}, {"type", "VEC2"}},
-          {{"bufferView", 2}, {"componentType", 5125}, {"count", 3 * nf}, {"type", "SCALAR"}}}}};
-    std::string json = gltf.dump();
-    while (json.size() % 4) json += ' ';
-    const size_t bin_bytes = pos_bytes + uv_bytes + idx_bytes;  // multiple of 4
-    std::string out;
-    auto put32 = [&](std::uint32_t x) { out.append(reinterpret_cast<const char*>(&x), 4); };
-    put32(0x46546C67u);  // "glTF" (little endian)
-    put32(2);
-    put32(std::uint32_t(12 + 8 + json.size() + 8 + bin_bytes));
-    put32(std::uint32_t(json.size()));
-    put32(0x4E4F534Au);  // "JSON"
-    out += json;
-    put32(std::uint32_t(bin_bytes));
-    put32(0x004E4942u);  // "BIN\0"
-    out.append(reinterpret_cast<const char*>(pos.data()), pos_bytes);
-    out.append(reinterpret_cast<const char*>(uv.data()), uv_bytes);
-    out.append(reinterpret_cast<const char*>(idx.data()), idx_bytes);
-    write_text_atomically(path, out);
 }
 
 /// Body and garment from the front-left, on a floor, studio light.
@@ -208,14 +160,28 @@ fs::path make_output_folder(const std::string& out) {
     return dir;
 }
 
-// The pose with each arm raised just clear of the trunk where skinning passed it into the
-// torso (garment::clear_arms_from_trunk: no garment vertex there can be outside both); the
-// report goes to stderr, prefixed with `who`, when an arm had to move.
-body::Pose arms_cleared(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
-                        const std::string& who, garment::ArmClearanceSummary& arms) {
-    const body::Pose out = garment::clear_arms_from_trunk(model, shaped, pose, garment::ArmClearanceOptions{}, &arms);
+// The arm clearance's report on stderr, prefixed with `who`, when an arm had to move.
+void print_arms(const std::string& who, const garment::ArmClearanceSummary& arms) {
     if (arms.crossings_before > 0) std::cerr << who << ": " << arms.brief_report() << "\n";
-    return out;
+}
+
+// The pipeline's options from `drape dress`'s flags.
+garment::DressOutfitOptions dress_options(const DressArgs& args) {
+    garment::DressOutfitOptions options;
+    options.mesh.target_edge_cm = args.edge_cm;
+    options.drape.on_progress = print_progress;
+    options.drape.body_motion_s = args.motion_s;
+    options.clear_arms = !args.keep_arms;
+    return options;
+}
+
+// The body of --body (default: the mean female), shaped to its measurements.
+body::ShapedBody shape_requested_body(const body::BodyModel& model, const body::SemanticRequest& request,
+                                      const std::string& who) {
+    body::ShapedBody shaped;
+    const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
+    if (!shape.usable()) throw std::runtime_error(who + ": body shaping failed: " + shape.brief_report());
+    return shaped;
 }
 
 void run_dress_outfit(const DressArgs& args);
@@ -241,61 +207,50 @@ void run_dress(const DressArgs& requested) {
     const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
     const body::SemanticRequest request =
         args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
-    const GarmentSizing given =
-        args.sizing == "auto" ? GarmentSizing{} : sizing_from_json(type, read_json_file(args.sizing), args.sizing);
+    garment::GarmentRequest garment_request;
+    garment_request.type = type;
+    if (args.sizing != "auto") garment_request.sizing = sizing_from_json(type, read_json_file(args.sizing), args.sizing);
+    garment_request.material = material;
+    const garment::DressOutfitOptions options = dress_options(args);
 
     const body::BodyModel& model = body::BodyModel::default_model();
-    body::ShapedBody shaped;
-    const body::ShapeSummary shape =
-        body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
-    if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
-    garment::ArmClearanceSummary arms;
-    const body::Pose pose = args.keep_arms ? requested_pose : arms_cleared(model, shaped, requested_pose, "drape dress", arms);
-    const body::PosedBody posed = body::pose_body(model, shaped, pose);
-    const GarmentSizing sizing = args.sizing == "auto" ? proposed_sizing(type, model, shaped, shape.measured) : given;
-    const garment::Pattern pattern = make_pattern(sizing);
-
+    const body::ShapedBody shaped = shape_requested_body(model, request, "drape dress");
     const fs::path dir = make_output_folder(args.out);
+    // Dressed in the rest A-pose, sewn, then moved to the pose (garment::dress_outfit).
+    garment::DressedOutfit out;
+    const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, requested_pose, {garment_request}, options, out);
+    print_arms("drape dress", out.arms);
+    const garment::Pattern& pattern = out.patterns[0];
     garment::write_pattern_svg(dir / "pattern.svg", pattern);
     garment::write_pattern_dxf(dir / "pattern.dxf", pattern);
     garment::write_pattern_json(dir / "pattern.json", pattern);
-
-    garment::MeshOptions mesh_options;
-    mesh_options.target_edge_cm = args.edge_cm;
-    garment::GarmentMesh mesh;
-    const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, mesh);
-    if (!meshed.usable()) throw std::runtime_error("drape dress: meshing failed: " + meshed.brief_report());
-    std::cerr << "drape dress: " << meshed.brief_report() << "\n";
-    Eigen::MatrixX3d X;
-    garment::DrapeOptions options;
-    options.on_progress = print_progress;
-    options.body_motion_s = args.motion_s;
+    if (s.termination != garment::DressOutfitTermination::draped) throw std::runtime_error("drape dress: " + s.message);
+    const garment::GarmentMesh& mesh = out.meshes[0];
+    std::cerr << "drape dress: " << out.meshing[0].brief_report() << "\n";
     if (args.save_dressed) {  // the initial state the simulation starts from
         Eigen::MatrixX3d D;
-        garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), garment::DressingOptions{}, D);
-        write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
+        garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), options.dressing, D);
+        garment::write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
         if (!args.no_render)
             write_render(dir / "dressed.png", body::pose_body(model, shaped, body::Pose::rest()).vertices, model.faces,
                          {&mesh}, {D});
     }
-    // Dressed in the rest A-pose, sewn, then moved to the pose (garment::dress_and_drape).
-    garment::DressingSummary dressed;
-    const garment::DrapeSummary draped = garment::dress_and_drape(
-        pattern, mesh, model, shaped, pose, material, garment::DressingOptions{}, options, X, &dressed);
-    std::cerr << "drape dress: " << dressed.brief_report() << "\n";
+    const garment::DrapeSummary& draped = s.drape;
+    std::cerr << "drape dress: " << out.dressing[0].brief_report() << "\n";
     std::cout << "drape dress: " << pattern.name << ", " << draped.brief_report() << "\n";
 
-    write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
-    write_garment_glb(dir / "garment.glb", mesh, X);
-    if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, {&mesh}, {X});
+    const Eigen::MatrixX3d& X = out.positions[0];
+    garment::write_garment_obj(dir / "garment.obj", pattern, mesh, X, "draped garment, world");
+    garment::write_garment_glb(dir / "garment.glb", mesh, X);
+    if (!args.no_render) write_render(dir / "render.png", out.body_vertices, model.faces, {&mesh}, {X});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json report = drape_report(args, material_source, draped);
-    report["arms_raised_deg"] = {{"right", arms.right_degrees}, {"left", arms.left_degrees}};
+    report["arms_raised_deg"] = {{"right", out.arms.right_degrees}, {"left", out.arms.left_degrees}};
     report["garment"] = garment_type_name(type);
-    report["sizing"] = to_json(sizing);
-    report["faces"] = meshed.faces;
-    report["dressing"] = dressed.brief_report();
-    report["seconds_dress"] = dressed.seconds;
+    report["sizing"] = to_json(out.sizings[0]);
+    report["faces"] = out.meshing[0].faces;
+    report["dressing"] = out.dressing[0].brief_report();
+    report["seconds_dress"] = out.dressing[0].seconds;
     report["seconds"] = seconds;
     write_json_file(dir / "summary.json", report);
     if (!draped.usable()) throw std::runtime_error("drape dress: draping not usable: " + draped.brief_report());
@@ -337,63 +292,54 @@ void run_dress_outfit(const DressArgs& args) {
             require(value.is_object(), args.sizing, ": group '", key, "' must be an object");
         }
     }
-    const body::BodyModel& model = body::BodyModel::default_model();
-    body::ShapedBody shaped;
-    const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
-    if (!shape.usable()) throw std::runtime_error("drape dress: body shaping failed: " + shape.brief_report());
-    garment::ArmClearanceSummary arms;
-    const body::Pose pose = args.keep_arms ? requested_pose : arms_cleared(model, shaped, requested_pose, "drape dress", arms);
-    std::vector<GarmentSizing> sizings;
-    std::vector<garment::Pattern> patterns;
+    std::vector<garment::GarmentRequest> requests;
     for (GarmentType t : types) {
         const std::string name = garment_type_name(t);
-        sizings.push_back(groups.contains(name) ? sizing_from_json(t, groups[name], args.sizing + " (" + name + ")")
-                                                : proposed_sizing(t, model, shaped, shape.measured));
-        patterns.push_back(make_pattern(sizings.back()));
+        garment::GarmentRequest r;
+        r.type = t;
+        if (groups.contains(name)) r.sizing = sizing_from_json(t, groups[name], args.sizing + " (" + name + ")");
+        r.material = material;
+        requests.push_back(r);
     }
+    const garment::DressOutfitOptions options = dress_options(args);
 
+    const body::BodyModel& model = body::BodyModel::default_model();
+    const body::ShapedBody shaped = shape_requested_body(model, request, "drape dress");
     const fs::path dir = make_output_folder(args.out);
-    std::vector<garment::GarmentMesh> meshes(types.size());
+    garment::DressedOutfit out;
+    const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, requested_pose, requests, options, out);
+    print_arms("drape dress", out.arms);
     for (size_t g = 0; g < types.size(); ++g) {
         const std::string name = garment_type_name(types[g]);
-        garment::write_pattern_svg(dir / ("pattern_" + name + ".svg"), patterns[g]);
-        garment::write_pattern_dxf(dir / ("pattern_" + name + ".dxf"), patterns[g]);
-        garment::write_pattern_json(dir / ("pattern_" + name + ".json"), patterns[g]);
-        garment::MeshOptions mesh_options;
-        mesh_options.target_edge_cm = args.edge_cm;
-        const garment::MeshSummary meshed = garment::mesh_pattern(patterns[g], mesh_options, meshes[g]);
-        if (!meshed.usable()) throw std::runtime_error("drape dress: meshing " + name + " failed: " + meshed.brief_report());
+        garment::write_pattern_svg(dir / ("pattern_" + name + ".svg"), out.patterns[g]);
+        garment::write_pattern_dxf(dir / ("pattern_" + name + ".dxf"), out.patterns[g]);
+        garment::write_pattern_json(dir / ("pattern_" + name + ".json"), out.patterns[g]);
     }
-    garment::DrapeOptions options;
-    options.on_progress = print_progress;
-    options.body_motion_s = args.motion_s;
-    std::vector<Eigen::MatrixX3d> X;
-    std::vector<garment::DressingSummary> dressed;
-    const garment::DrapeSummary draped = garment::dress_and_drape_outfit(
-        patterns, meshes, model, shaped, pose, material, garment::DressingOptions{}, options, X, &dressed);
+    if (s.termination != garment::DressOutfitTermination::draped) throw std::runtime_error("drape dress: " + s.message);
+    const garment::DrapeSummary& draped = s.drape;
     std::cout << "drape dress: " << args.garment << ", " << draped.brief_report() << "\n";
-    const body::PosedBody posed = body::pose_body(model, shaped, pose);
     nlohmann::json garments = nlohmann::json::array();
     std::vector<const garment::GarmentMesh*> mesh_ptrs;
     for (size_t g = 0; g < types.size(); ++g) {
         const std::string name = garment_type_name(types[g]);
-        write_garment_obj(dir / ("garment_" + name + ".obj"), patterns[g], meshes[g], X[g], "draped " + name + ", world");
-        write_garment_glb(dir / ("garment_" + name + ".glb"), meshes[g], X[g]);
-        const garment::GarmentStateCheck c = garment::check_garment_state(meshes[g], X[g], posed.vertices, model.faces);
+        garment::write_garment_obj(dir / ("garment_" + name + ".obj"), out.patterns[g], out.meshes[g], out.positions[g],
+                          "draped " + name + ", world");
+        garment::write_garment_glb(dir / ("garment_" + name + ".glb"), out.meshes[g], out.positions[g]);
+        const garment::GarmentStateCheck& c = out.checks[g];
         garments.push_back({{"garment", name},
                             {"layer", g == 0 ? "inner" : "outer"},
-                            {"sizing", to_json(sizings[g])},
-                            {"vertices", meshes[g].cloth.vertex_count()},
+                            {"sizing", to_json(out.sizings[g])},
+                            {"vertices", out.meshes[g].cloth.vertex_count()},
                             {"seam_gap_max_m", c.max_seam_gap_m},
                             {"penetration_max_m", c.max_penetration_m},
                             {"self_intersections", c.self_intersections},
-                            {"dressing", dressed[g].brief_report()}});
-        mesh_ptrs.push_back(&meshes[g]);
+                            {"dressing", out.dressing[g].brief_report()}});
+        mesh_ptrs.push_back(&out.meshes[g]);
     }
-    if (!args.no_render) write_render(dir / "render.png", posed.vertices, model.faces, mesh_ptrs, X);
+    if (!args.no_render) write_render(dir / "render.png", out.body_vertices, model.faces, mesh_ptrs, out.positions);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json report = drape_report(args, material_source, draped);
-    report["arms_raised_deg"] = {{"right", arms.right_degrees}, {"left", arms.left_degrees}};
+    report["arms_raised_deg"] = {{"right", out.arms.right_degrees}, {"left", out.arms.left_degrees}};
     report["garment"] = args.garment;
     report["garments"] = garments;
     report["seconds"] = seconds;
@@ -417,18 +363,6 @@ struct EvalDressArgs {
 
 using garment::EvalBody;
 using garment::kEvalBodies;
-
-// The evaluation poses on one body, each arm raised just clear of the trunk.
-std::vector<body::Pose> arms_cleared(const body::BodyModel& model, const body::ShapedBody& shaped,
-                                     const std::vector<body::Pose>& poses, const std::vector<std::string>& names,
-                                     const std::string& body_name) {
-    std::vector<body::Pose> out;
-    for (size_t k = 0; k < poses.size(); ++k) {
-        garment::ArmClearanceSummary arms;
-        out.push_back(arms_cleared(model, shaped, poses[k], "drape eval-dress: " + body_name + " / " + names[k], arms));
-    }
-    return out;
-}
 
 // `--docs FILE`: the lines between these markers are replaced by the run's table and its
 // summary line, and the contact sheet goes to images/dress_eval.jpg beside FILE.
@@ -467,6 +401,9 @@ void run_eval_dress(const EvalDressArgs& args) {
     const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
     const fs::path dir = make_output_folder(args.out);
 
+    garment::DressOutfitOptions options;  // default dressing and draping, arms cleared
+    options.mesh.target_edge_cm = args.edge_cm;
+
     const body::BodyModel& model = body::BodyModel::default_model();
     nlohmann::json cases = nlohmann::json::array();
     std::vector<std::pair<std::string, cv::Mat>> sheet_cells;
@@ -481,29 +418,26 @@ void run_eval_dress(const EvalDressArgs& args) {
         request.gender = eb.gender;
         request[body::Semantic::height_m] = eb.height_m;
         request[body::Semantic::weight_kg] = eb.weight_kg;
-        body::ShapedBody shaped;
-        const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
-        if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping " + std::string(eb.name) + " failed: " + shape.brief_report());
-        const std::vector<body::Pose> body_poses = arms_cleared(model, shaped, poses, args.poses, eb.name);
+        const body::ShapedBody shaped = shape_requested_body(model, request, "drape eval-dress: " + std::string(eb.name));
         for (size_t t = 0; t < types.size(); ++t) {
-            const GarmentSizing sizing = proposed_sizing(types[t], model, shaped, shape.measured);
-            const garment::Pattern pattern = make_pattern(sizing);
-            garment::MeshOptions mesh_options;
-            mesh_options.target_edge_cm = args.edge_cm;
-            garment::GarmentMesh mesh;
-            const garment::MeshSummary meshed = garment::mesh_pattern(pattern, mesh_options, mesh);
-            if (!meshed.usable()) throw std::runtime_error("drape eval-dress: meshing failed: " + meshed.brief_report());
+            garment::GarmentRequest garment_request;
+            garment_request.type = types[t];
+            garment_request.material = material;
             for (size_t k = 0; k < poses.size(); ++k) {
-                Eigen::MatrixX3d X;
-                garment::DressingSummary dressed;
-                const garment::DrapeSummary d = garment::dress_and_drape(pattern, mesh, model, shaped, body_poses[k], material,
-                                                                         garment::DressingOptions{}, garment::DrapeOptions{},
-                                                                         X, &dressed);
-                const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, body_poses[k]).vertices;
-                // Independent of the simulator's own report: the checks of the dressed state.
-                const garment::GarmentStateCheck c = garment::check_garment_state(mesh, X, body_V, model.faces);
-                const bool ok = d.usable() && c.max_penetration_m <= 1e-3 && c.self_intersections == 0 &&
-                                c.max_seam_gap_m < 1e-3;
+                garment::DressedOutfit out;
+                const garment::DressOutfitSummary s =
+                    garment::dress_outfit(model, shaped, poses[k], {garment_request}, options, out);
+                if (t == 0) print_arms("drape eval-dress: " + std::string(eb.name) + " / " + args.poses[k], out.arms);
+                if (s.termination != garment::DressOutfitTermination::draped)
+                    throw std::runtime_error("drape eval-dress: " + s.message);
+                const garment::DrapeSummary& d = s.drape;
+                const garment::DressingSummary& dressed = out.dressing[0];
+                const garment::GarmentStateCheck& c = out.checks[0];
+                const garment::GarmentSizing& sizing = out.sizings[0];
+                const Eigen::MatrixX3d& X = out.positions[0];
+                const Eigen::MatrixX3d& body_V = out.body_vertices;
+                // Usable by the simulator's own report and by the independent checks of the draped state.
+                const bool ok = s.usable() && s.checks_pass(out);
                 usable += ok ? 1 : 0;
                 ++total;
                 seconds_sum += d.seconds + dressed.seconds;
@@ -534,7 +468,7 @@ void run_eval_dress(const EvalDressArgs& args) {
                 if (std::string(eb.name) == "female_p50")
                     sheet_cells.push_back({args.garments[t] + ", " + args.poses[k],
                                            write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V,
-                                                        model.faces, {&mesh}, {X}, 300, 450)});
+                                                        model.faces, {&out.meshes[0]}, {X}, 300, 450)});
             }
         }
     }
@@ -545,22 +479,18 @@ void run_eval_dress(const EvalDressArgs& args) {
         request.gender = eb.gender;
         request[body::Semantic::height_m] = eb.height_m;
         request[body::Semantic::weight_kg] = eb.weight_kg;
-        body::ShapedBody shaped;
-        const body::ShapeSummary shape = body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped);
-        if (!shape.usable()) throw std::runtime_error("drape eval-dress: shaping failed: " + shape.brief_report());
-        const std::vector<body::Pose> body_poses = arms_cleared(model, shaped, poses, args.poses, eb.name);
-        const std::vector<garment::Pattern> patterns = {make_pattern(proposed_sizing(GarmentType::pants, model, shaped, shape.measured)),
-                                                        make_pattern(proposed_sizing(GarmentType::tshirt, model, shaped, shape.measured))};
-        std::vector<garment::GarmentMesh> meshes(2);
-        garment::MeshOptions mesh_options;
-        mesh_options.target_edge_cm = args.edge_cm;
-        for (size_t g = 0; g < 2; ++g)
-            if (!garment::mesh_pattern(patterns[g], mesh_options, meshes[g]).usable())
-                throw std::runtime_error("drape eval-dress: meshing the outfit failed");
+        const body::ShapedBody shaped = shape_requested_body(model, request, "drape eval-dress");
+        std::vector<garment::GarmentRequest> requests(2);
+        requests[0].type = GarmentType::pants;
+        requests[1].type = GarmentType::tshirt;
+        for (garment::GarmentRequest& r : requests) r.material = material;
         for (size_t k = 0; k < poses.size(); ++k) {
-            std::vector<Eigen::MatrixX3d> X;
-            const garment::DrapeSummary d = garment::dress_and_drape_outfit(
-                patterns, meshes, model, shaped, body_poses[k], material, garment::DressingOptions{}, garment::DrapeOptions{}, X);
+            garment::DressedOutfit out;
+            const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, poses[k], requests, options, out);
+            if (s.termination != garment::DressOutfitTermination::draped)
+                throw std::runtime_error("drape eval-dress: the outfit: " + s.message);
+            // The outfit's row reports the joint simulation (crossings between the garments included).
+            const garment::DrapeSummary& d = s.drape;
             std::cout << "drape eval-dress: tshirt+pants / " << eb.name << " / " << args.poses[k] << ": "
                       << d.brief_report() << std::endl;
             table << "| tshirt+pants | " << eb.name << " | " << args.poses[k] << " | " << d.vertices << " | " << std::fixed
@@ -573,10 +503,9 @@ void run_eval_dress(const EvalDressArgs& args) {
                              {"vertices", d.vertices}, {"mean_drop_m", d.mean_drop_m}, {"usable", d.usable()},
                              {"drape", d.brief_report()},
                              {"seconds", d.seconds}});
-            const Eigen::MatrixX3d body_V = body::pose_body(model, shaped, body_poses[k]).vertices;
             sheet_cells.push_back({"tshirt+pants, " + args.poses[k],
-                                   write_render(dir / ("tshirt+pants_" + args.poses[k] + ".png"), body_V, model.faces,
-                                                {&meshes[0], &meshes[1]}, X, 300, 450)});
+                                   write_render(dir / ("tshirt+pants_" + args.poses[k] + ".png"), out.body_vertices,
+                                                model.faces, {&out.meshes[0], &out.meshes[1]}, out.positions, 300, 450)});
         }
     }
     // Contact sheet: a row per garment (and the outfit), a column per pose.

@@ -1,9 +1,6 @@
 #include "garment_json.hpp"
 
-#include <drape/core/atomic_file.hpp>
 #include <drape/garment/sizing_proposal.hpp>
-
-#include <sstream>
 
 #include "json_io.hpp"
 
@@ -69,25 +66,6 @@ nlohmann::json to_json(const GarmentSizing& g) {
                     {"skirt", write_group(g.dress.skirt, garment::SkirtSizing::parameters())}};
     }
     return {};
-}
-
-void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,
-                       const garment::GarmentMesh& m, const Eigen::MatrixX3d& positions,
-                       const std::string& what) {
-    std::ostringstream os;
-    os << "# drape '" << pattern.name << "': " << what << ", metres; vt = pattern uv\n";
-    for (Eigen::Index v = 0; v < positions.rows(); ++v)
-        os << "v " << positions(v, 0) << " " << positions(v, 1) << " " << positions(v, 2) << "\n";
-    for (int v = 0; v < m.cloth.vertex_count(); ++v) os << "vt " << m.uv(v, 0) << " " << m.uv(v, 1) << "\n";
-    int group = -1;
-    for (int f = 0; f < m.cloth.face_count(); ++f) {
-        const int p = m.panel_of_vertex(m.cloth.faces(f, 0));
-        if (p != group) os << "g " << pattern.panels[static_cast<std::size_t>(group = p)].name << "\n";
-        os << "f";
-        for (int k = 0; k < 3; ++k) os << " " << m.cloth.faces(f, k) + 1 << "/" << m.cloth.faces(f, k) + 1;
-        os << "\n";
-    }
-    write_text_atomically(path, os.str());
 }
 
 }  // namespace drape::app

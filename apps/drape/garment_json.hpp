@@ -13,9 +13,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <Eigen/Core>
-
-#include <filesystem>
 #include <string>
 
 namespace drape::app {
@@ -35,12 +32,5 @@ using garment::proposed_sizing;
 /// pattern is made).
 GarmentSizing sizing_from_json(GarmentType type, const nlohmann::json& j, const std::string& file);
 nlohmann::json to_json(const GarmentSizing& sizing);
-
-/// A garment mesh as OBJ: `v` = positions (#V x 3, metres: the draped garment, or the flat
-/// layout (u, v, 0)), `vt` = pattern uv, one group per panel; `what` goes in the header.
-/// Written atomically.
-void write_garment_obj(const std::filesystem::path& path, const garment::Pattern& pattern,
-                       const garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions,
-                       const std::string& what);
 
 }  // namespace drape::app

@@ -9,6 +9,7 @@
 #include <drape/body/shape_body.hpp>
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/garment/garment_export.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern_dxf.hpp>
 #include <drape/garment/pattern_json.hpp>
@@ -68,7 +69,7 @@ void run_pattern(const PatternArgs& args) {
     const garment::MeshSummary summary = garment::mesh_pattern(pattern, options, mesh);
     Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(mesh.cloth.vertex_count(), 3);
     flat.leftCols<2>() = mesh.cloth.pattern.topRows(mesh.cloth.vertex_count());
-    write_garment_obj(dir / "pattern_mesh.obj", pattern, mesh, flat, "flat layout");
+    garment::write_garment_obj(dir / "pattern_mesh.obj", pattern, mesh, flat, "flat layout");
     nlohmann::json report = {{"garment", garment_type_name(type)},
                              {"sizing", to_json(sizing)},
                              {"panels", pattern.panels.size()},

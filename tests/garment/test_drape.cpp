@@ -13,6 +13,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "mean_female.hpp"
 #include "test_paths.hpp"
 
 #include <cmath>
@@ -184,17 +185,7 @@ TEST_CASE("drape: cancelling from the progress callback stops the simulation",
 
 namespace {
 
-// The mean female (shape prior's completion of an empty request) and her measurements.
-struct MeanFemale {
-    const body::BodyModel& model = body::BodyModel::default_model();
-    body::ShapedBody shaped;
-    body::BodyMeasurements m;
-    MeanFemale() {
-        REQUIRE(body::shape_body(model, model.prior.complete(body::SemanticRequest{}), body::ShapeOptions{}, shaped)
-                    .usable());
-        m = body::measure_body(model, shaped.vertices);
-    }
-};
+using drape::test::MeanFemale;
 
 // dress_and_drape on the mean female at 4 cm edges; checks the acceptance criteria
 // and that welded seams are closed exactly.
