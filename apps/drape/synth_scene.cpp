@@ -122,18 +122,18 @@ void write_scene_files(const fs::path& dir, const synth::SynthScene& scene, cons
                                {"camera", camera_to_json(scene.camera)}}},
                      {"garments", truth_garments}});
 
-    const garment::DrapeSummary& d = r.drape.drape;
+    const garment::DrapeSummary& d = r.drape.summary.drape;
     nlohmann::json garment_reports = nlohmann::json::array();
     std::vector<std::string> garment_names;
     for (std::size_t i = 0; i < scene.garments.size(); ++i) {
         const std::string type = garment::garment_type_name(scene.garments[i].sizing.type);
         garment_names.push_back(type);
-        const garment::DressingSummary& ds = r.drape.dressing[i];
+        const garment::DressingSummary& ds = r.drape.outfit.dressing[i];
         const vision::WrinkleSummary& w = r.wrinkles[i].summary;
         garment_reports.push_back({{"type", type},
-                                   {"vertices", r.drape.meshes[i].cloth.vertex_count()},
-                                   {"faces", r.drape.meshing[i].faces},
-                                   {"stitches", r.drape.meshes[i].stitches.size()},
+                                   {"vertices", r.drape.outfit.meshes[i].cloth.vertex_count()},
+                                   {"faces", r.drape.outfit.meshing[i].faces},
+                                   {"stitches", r.drape.outfit.meshes[i].stitches.size()},
                                    {"dressing", {{"vertices_inside", ds.vertices_inside},
                                                  {"vertices_pushed", ds.vertices_pushed},
                                                  {"iterations", ds.iterations},

@@ -2,10 +2,8 @@
 
 #include <drape/body/body_model.hpp>
 #include <drape/core/errors.hpp>
-#include <drape/garment/garment_sizing.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <stdexcept>
 
 namespace drape::synth {
@@ -24,34 +22,22 @@ SynthDrape drape_synth_scene(const SynthScene& scene, const SynthOptions& option
     require(options.is_valid(&why), "drape synth: ", why);
     const body::BodyModel& model = body::BodyModel::default_model();
     require(scene.shaped.vertices.rows() == model.vertex_count(), "drape synth: the scene has no shaped body");
-    const std::size_t n = scene.garments.size();
-    require(n >= 1, "drape synth: the scene has no garment");
-    SynthDrape d;
-    d.meshes.resize(n);
-    d.meshing.resize(n);
-    std::vector<cloth::Material> materials;
-    for (std::size_t i = 0; i < n; ++i) {
-        d.patterns.push_back(garment::make_pattern(scene.garments[i].sizing));
-        materials.push_back(scene.garments[i].material);
-        garment::MeshOptions mesh_options;
-        mesh_options.target_edge_cm = options.edge_cm;
-        d.meshing[i] = garment::mesh_pattern(d.patterns[i], mesh_options, d.meshes[i]);
-        if (!d.meshing[i].usable())
-            throw std::runtime_error("drape synth: meshing failed: " + d.meshing[i].brief_report());
+    std::vector<garment::GarmentRequest> requests;
+    for (const SynthGarment& g : scene.garments) {
+        garment::GarmentRequest r;
+        r.type = g.sizing.type;
+        r.sizing = g.sizing;
+        r.material = g.material;
+        requests.push_back(r);
     }
-    const garment::DrapeOptions drape_options = synth_drape_options(options.max_steps);
-    d.positions.resize(n);
-    d.dressing.resize(n);
-    const auto t0 = std::chrono::steady_clock::now();
-    // A single garment is dressed in the rest A-pose and moved to the scene's pose with the
-    // body (starts without crossings); an outfit's garments are dressed and draped together.
-    d.drape = n == 1 ? garment::dress_and_drape(d.patterns[0], d.meshes[0], model, scene.shaped, scene.pose,
-                                                materials[0], garment::DressingOptions{}, drape_options,
-                                                d.positions[0], &d.dressing[0])
-                     : garment::dress_and_drape_outfit(d.patterns, d.meshes, model, scene.shaped, scene.pose,
-                                                       materials, garment::DressingOptions{}, drape_options,
-                                                       d.positions, &d.dressing);
-    d.seconds_drape = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    garment::DressOutfitOptions o;
+    o.mesh.target_edge_cm = options.edge_cm;
+    o.drape = synth_drape_options(options.max_steps);
+    o.clear_arms = false;
+    SynthDrape d;
+    d.summary = garment::dress_outfit(model, scene.shaped, scene.pose, requests, o, d.outfit);
+    if (d.summary.termination == garment::DressOutfitTermination::meshing_failed)
+        throw std::runtime_error("drape synth: " + d.summary.message);
     return d;
 }
 

@@ -10,7 +10,7 @@
 
 namespace drape::synth {
 
-std::vector<double> mean_curvatures(const SynthDrape& outfit) {
+std::vector<double> mean_curvatures(const garment::DressedOutfit& outfit) {
     std::vector<double> out;
     for (std::size_t i = 0; i < outfit.meshes.size(); ++i) {
         const std::vector<cloth::Hinge> hinges = cloth::build_hinges(outfit.meshes[i].cloth);
@@ -20,7 +20,7 @@ std::vector<double> mean_curvatures(const SynthDrape& outfit) {
 }
 
 std::vector<DeepestInside> deepest_inside(const Eigen::MatrixXd& body_vertices,
-                                          const SynthDrape& outfit) {
+                                          const garment::DressedOutfit& outfit) {
     const body::BodyModel& model = body::BodyModel::default_model();
     const Eigen::MatrixX3i& body_F = model.faces;
     const Eigen::MatrixX3d body_V = body_vertices;

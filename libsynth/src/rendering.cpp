@@ -11,7 +11,7 @@
 namespace drape::synth {
 
 render::Scene synth_render_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
-                                 const SynthDrape& outfit) {
+                                 const garment::DressedOutfit& outfit) {
     const body::BodyModel& model = body::BodyModel::default_model();
     const Eigen::RowVector3d shift = scene.placement.transpose();
     render::Scene rs;
@@ -49,7 +49,7 @@ render::Scene synth_render_scene(const SynthScene& scene, const Eigen::MatrixXd&
 }
 
 SynthImages render_synth_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
-                               const SynthDrape& outfit, const SynthOptions& options) {
+                               const garment::DressedOutfit& outfit, const SynthOptions& options) {
     const render::Renderer renderer(synth_render_scene(scene, body_vertices, outfit));
     const render::Camera camera = render::Camera::from_body(scene.camera, scene.width_px, scene.height_px);
     render::RenderOptions ro;

@@ -37,17 +37,17 @@ SynthResult make_synth_scene(const SynthScene& scene, const SynthOptions& option
     for (const SynthGarment& g : scene.garments) {
         SynthGarmentResult gr;
         gr.type = garment::garment_type_name(g.sizing.type);
-        gr.usable = r.drape.drape.usable();
-        gr.drape_report = r.drape.drape.brief_report();
-        gr.seconds = r.drape.seconds_drape;
+        gr.usable = r.drape.summary.drape.usable();
+        gr.drape_report = r.drape.summary.drape.brief_report();
+        gr.seconds = r.drape.summary.seconds_drape;
         r.summary.garments.push_back(gr);
     }
-    r.mean_curvature_per_m = mean_curvatures(r.drape);
-    r.deepest = deepest_inside(r.posed.vertices, r.drape);
+    r.mean_curvature_per_m = mean_curvatures(r.drape.outfit);
+    r.deepest = deepest_inside(r.posed.vertices, r.drape.outfit);
     r.summary.seconds_drape = seconds_since(start);
 
     const auto t_render = std::chrono::steady_clock::now();
-    r.images = render_synth_scene(scene, r.posed.vertices, r.drape, options);
+    r.images = render_synth_scene(scene, r.posed.vertices, r.drape.outfit, options);
     r.summary.seconds_render = seconds_since(t_render);
 
     r.joints = project_joints(scene, r.posed);

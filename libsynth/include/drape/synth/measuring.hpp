@@ -20,7 +20,7 @@ namespace drape::synth {
 
 /// Mean over the vertices of garment i's local curvature (cloth::vertex_local_curvature,
 /// 1/m) in its draped state, per garment.
-std::vector<double> mean_curvatures(const SynthDrape& outfit);
+std::vector<double> mean_curvatures(const garment::DressedOutfit& outfit);
 
 /// The vertex of a garment that lies deepest inside the body.
 struct DeepestInside {
@@ -33,7 +33,7 @@ struct DeepestInside {
 
 /// Per garment, where it is deepest inside the posed body (#B x 3 world metres).
 std::vector<DeepestInside> deepest_inside(const Eigen::MatrixXd& body_vertices,
-                                          const SynthDrape& outfit);
+                                          const garment::DressedOutfit& outfit);
 
 /// The 14 image joints (body::kImageJoints) of the posed skeleton moved by scene.placement,
 /// projected by scene.camera (image frame, pixel centres at +0.5).

@@ -20,7 +20,7 @@ namespace drape::synth {
 /// times) moved by scene.placement, on a floor under the lowest point and a backdrop.
 /// \param body_vertices the posed body, #B x 3 world metres (before placement).
 render::Scene synth_render_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
-                                 const SynthDrape& outfit);
+                                 const garment::DressedOutfit& outfit);
 
 struct SynthImages {
     render::RenderImages midday;  ///< colour, labels, depth, ... under LightingPreset::midday
@@ -32,6 +32,6 @@ struct SynthImages {
 /// options.threads (the bytes do not depend on the thread count).
 /// \throw drape::InvalidInput as render::Renderer.
 SynthImages render_synth_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
-                               const SynthDrape& outfit, const SynthOptions& options);
+                               const garment::DressedOutfit& outfit, const SynthOptions& options);
 
 }  // namespace drape::synth
