@@ -1,10 +1,13 @@
 // Times the renderer on the default body plus a ~10k-vertex garment (a pleated skirt
 // built in code) at 600 x 900 pixels: BVH build, then each lighting preset at several
 // sample counts and thread counts. With --figures DIR it also writes the documentation
-// images (docs/images/render_*.png). Usage: drape_bench_render [--figures DIR] [--quick]
+// images (docs/images/render_*.png). With --raster it times only the rasteriser
+// (drape/render/rasterize.hpp) on the same scene and camera, the fast path recovery runs.
+// Usage: drape_bench_render [--figures DIR] [--quick] [--raster]
 #include <drape/body/body_model.hpp>
 #include <drape/body/pose.hpp>
 #include <drape/body/shape_body.hpp>
+#include <drape/render/rasterize.hpp>
 #include <drape/render/renderer.hpp>
 
 #include <opencv2/imgcodecs.hpp>
@@ -17,6 +20,8 @@
 #include <cstring>
 #include <string>
 #include <thread>
+#include <vector>
+#include <algorithm>
 
 using namespace drape;
 using Clock = std::chrono::steady_clock;
@@ -80,14 +85,42 @@ double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+/// Rasterises the scene's meshes `runs` times with and without coverage masks; prints the
+/// fastest and the median wall time and the median CPU time (the reliable figure on a
+/// loaded machine) of each.
+void bench_raster(const std::vector<render::Mesh>& meshes, const body::Camera& camera, int runs) {
+    for (const bool coverage : {true, false}) {
+        render::RasterOptions options;
+        options.coverage = coverage;
+        render::RasterImages images;
+        std::vector<double> ms, cpu_ms;
+        render::RasterSummary s;
+        for (int i = 0; i < runs; ++i) {
+            const auto t0 = Clock::now();
+            const std::clock_t c0 = std::clock();
+            s = render::rasterize(meshes, camera, options, images);
+            cpu_ms.push_back(1e3 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
+            ms.push_back(1e3 * seconds_since(t0));
+        }
+        std::sort(ms.begin(), ms.end());
+        std::sort(cpu_ms.begin(), cpu_ms.end());
+        std::printf("rasterize 600x900, coverage %-3s  wall fastest %6.2f ms, median %6.2f ms; cpu median %6.2f ms"
+                    "  (%d runs; %s)\n",
+                    coverage ? "on" : "off", ms.front(), ms[ms.size() / 2], cpu_ms[cpu_ms.size() / 2], runs,
+                    s.brief_report().c_str());
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::string figures;
     bool quick = false;
+    bool raster_only = false;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--figures") && i + 1 < argc) figures = argv[++i];
         else if (!std::strcmp(argv[i], "--quick")) quick = true;
+        else if (!std::strcmp(argv[i], "--raster")) raster_only = true;
     }
     std::printf("machine: %u hardware threads\n", std::thread::hardware_concurrency());
     const body::BodyModel& model = body::BodyModel::default_model();
@@ -113,11 +146,21 @@ int main(int argc, char** argv) {
                 static_cast<int>(V.rows()), static_cast<int>(scene.meshes[1].V.rows()),
                 static_cast<int>(model.faces.rows()), static_cast<int>(scene.meshes[1].F.rows()));
 
+    const double cy = 0.52 * (V.col(1).maxCoeff() + V.col(1).minCoeff());
+    // A fitted photo's camera (the fit-body convention: centre (0, 0, 5.2)) framing the body
+    // as the path tracer's camera below does (its principal point moved down by cy).
+    body::Camera fitted;
+    fitted.model = body::CameraModel::pinhole;
+    fitted.focal_px = 1800.0;
+    fitted.distance_m = 5.2;
+    fitted.offset_px = {300.0, 450.0 + fitted.focal_px * cy / fitted.distance_m};
+    bench_raster(scene.meshes, fitted, quick ? 20 : 100);
+    if (raster_only) return 0;
+
     const auto t0 = Clock::now();
     const render::Renderer renderer(scene);
     std::printf("%-44s %8.1f ms\n", "Renderer (validate + normals + BVH)", 1e3 * seconds_since(t0));
 
-    const double cy = 0.52 * (V.col(1).maxCoeff() + V.col(1).minCoeff());
     const render::Camera camera = render::Camera::look_at({0.0, cy, 5.2}, {0.0, cy, 0.0}, {0, 1, 0}, 1800.0, 600, 900);
     render::RenderImages images;
     for (const render::LightingPreset preset :

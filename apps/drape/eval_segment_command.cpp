@@ -13,6 +13,7 @@
 #include <drape/vision/garment_result.hpp>
 #include <drape/vision/image_io.hpp>
 #include <drape/vision/segmentation.hpp>
+#include <drape/vision/segmentation_score.hpp>
 #include <drape/vision/strokes.hpp>
 
 #include <CLI/CLI.hpp>
@@ -39,6 +40,8 @@ using vision::GarmentPart;
 using vision::GarmentType;
 using vision::LabelRole;
 using vision::LabelTable;
+using vision::iou;
+using vision::role_mask;
 
 struct EvalArgs {
     std::string dir;
@@ -76,18 +79,6 @@ std::vector<std::pair<std::string, std::string>> list_photos(const fs::path& dir
             out.emplace_back(e.path().stem().string(), "");
     std::sort(out.begin(), out.end());
     return out;
-}
-
-cv::Mat role_mask(const cv::Mat& labels, const LabelTable& t, LabelRole role) {
-    cv::Mat m = cv::Mat::zeros(labels.size(), CV_8UC1);
-    for (size_t i = 0; i < labels.total(); ++i)
-        if (t.role(labels.data[i]) == role) m.data[i] = 255;
-    return m;
-}
-
-double iou(const cv::Mat& a, const cv::Mat& b) {
-    const int u = cv::countNonZero(a | b);
-    return u > 0 ? double(cv::countNonZero(a & b)) / u : 1.0;
 }
 
 /// The garments of a parse by part: masks (union of classes of that role) and types.

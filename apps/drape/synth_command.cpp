@@ -26,8 +26,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using synth::SynthOptions;
+using synth::SynthSummary;
+
 struct SynthArgs {
     SynthOptions options;
+    SynthChoices choices;
     long long seed = -1;
     std::string suite;
     std::string only;
@@ -37,15 +41,15 @@ struct SynthArgs {
 
 // One scene of a suite file: {"name", "seed", and any of "garment", "pose", "material",
 // "bending_scale", "edge_cm", "max_steps", "samples"}; "defaults" holds the same optional keys.
-void apply_scene_keys(const nlohmann::json& j, const std::string& where, SynthOptions& o) {
+void apply_scene_keys(const nlohmann::json& j, const std::string& where, SynthOptions& o, SynthChoices& c) {
     auto text = [&](const char* key, std::string& field) {
         if (!j.contains(key)) return;
         if (!j[key].is_string()) throw InvalidInput(where + ": field '" + key + "' must be a string, got " + j[key].dump());
         field = j[key].get<std::string>();
     };
-    text("garment", o.garment);
-    text("pose", o.pose);
-    text("material", o.material);
+    text("garment", c.garment);
+    text("pose", c.pose);
+    text("material", c.material);
     if (const auto v = optional_number(j, "bending_scale", where)) o.bending_scale = *v;
     if (const auto v = optional_number(j, "edge_cm", where)) o.edge_cm = *v;
     if (const auto v = optional_number(j, "max_steps", where)) o.max_steps = int(*v);
@@ -59,18 +63,20 @@ void apply_scene_keys(const nlohmann::json& j, const std::string& where, SynthOp
 struct SuiteScene {
     std::string name;
     SynthOptions options;
+    SynthChoices choices;
 };
 
-std::vector<SuiteScene> read_suite(const std::string& file, const SynthOptions& base) {
+std::vector<SuiteScene> read_suite(const std::string& file, const SynthOptions& base, const SynthChoices& base_choices) {
     const nlohmann::json j = read_json_file(file);
     reject_unknown_keys(j, {"format", "version", "description", "defaults", "scenes"}, file);
     if (!j.contains("scenes") || !j["scenes"].is_array() || j["scenes"].empty())
         throw InvalidInput(file + ": field 'scenes' must be a non-empty array");
     SynthOptions defaults = base;
+    SynthChoices default_choices = base_choices;
     if (j.contains("defaults")) {
         reject_unknown_keys(j["defaults"], {"garment", "pose", "material", "bending_scale", "edge_cm", "max_steps",
                                             "samples"}, file + " defaults");
-        apply_scene_keys(j["defaults"], file + ": defaults", defaults);
+        apply_scene_keys(j["defaults"], file + ": defaults", defaults, default_choices);
     }
     std::vector<SuiteScene> scenes;
     for (std::size_t i = 0; i < j["scenes"].size(); ++i) {
@@ -81,8 +87,8 @@ std::vector<SuiteScene> read_suite(const std::string& file, const SynthOptions& 
         if (!s.contains("name") || !s["name"].is_string() || s["name"].get<std::string>().empty())
             throw InvalidInput(where + ": field 'name' must be a non-empty string");
         if (!s.contains("seed")) throw InvalidInput(where + ": field 'seed' is missing");
-        SuiteScene scene{s["name"].get<std::string>(), defaults};
-        apply_scene_keys(s, where, scene.options);
+        SuiteScene scene{s["name"].get<std::string>(), defaults, default_choices};
+        apply_scene_keys(s, where, scene.options, scene.choices);
         std::string why;
         if (!scene.options.is_valid(&why)) throw InvalidInput(where + ": " + why);
         scenes.push_back(scene);
@@ -117,17 +123,16 @@ cv::Mat contact_sheet(const std::vector<std::pair<std::string, fs::path>>& scene
 
 void run_single(const SynthArgs& args) {
     if (args.seed < 0) throw InvalidInput("drape synth: give --seed N (N >= 0) or --suite FILE");
-    SynthOptions options = args.options;
+    SynthOptions options = with_choices(args.options, args.choices);
     options.seed = std::uint64_t(args.seed);
-    const SynthScene scene = sample_synth_scene(options);
-    const SynthSummary s = make_synth_scene(scene, options, args.out);
+    const SynthSummary s = make_and_write_synth_scene(options, args.out);
     std::cout << "drape synth: seed " << options.seed << ", " << s.brief_report() << "\n";
     if (!s.usable())
         throw std::runtime_error("drape synth: a drape is not usable (files written; see summary.json)");
 }
 
 void run_suite(const SynthArgs& args) {
-    std::vector<SuiteScene> scenes = read_suite(args.suite, args.options);
+    std::vector<SuiteScene> scenes = read_suite(args.suite, args.options, args.choices);
     if (!args.only.empty()) {
         std::vector<SuiteScene> kept;
         for (const SuiteScene& s : scenes)
@@ -144,8 +149,8 @@ void run_suite(const SynthArgs& args) {
     int failed = 0;
     for (const SuiteScene& s : scenes) {
         const fs::path dir = out / s.name;
-        nlohmann::json r = {{"name", s.name}, {"seed", s.options.seed}, {"garment", s.options.garment},
-                            {"pose", s.options.pose}, {"material", s.options.material}};
+        nlohmann::json r = {{"name", s.name}, {"seed", s.options.seed}, {"garment", s.choices.garment},
+                            {"pose", s.choices.pose}, {"material", s.choices.material}};
         if (args.skip_existing && fs::exists(dir / "truth.json")) {
             r["status"] = "skipped (exists)";
             for (const auto& p : previous)
@@ -153,8 +158,7 @@ void run_suite(const SynthArgs& args) {
         } else {
             const auto t0 = std::chrono::steady_clock::now();
             try {
-                const SynthScene scene = sample_synth_scene(s.options);
-                const SynthSummary summary = make_synth_scene(scene, s.options, dir);
+                const SynthSummary summary = make_and_write_synth_scene(with_choices(s.options, s.choices), dir);
                 r["status"] = summary.usable() ? "usable" : "not usable";
                 r["report"] = summary.brief_report();
                 r["seconds"] = summary.seconds;
@@ -188,10 +192,10 @@ void add_synth_command(CLI::App& app) {
                  "under mid-day and sunset light (image_*.png, labels.png, strokes.png, joints.json, truth.json, "
                  "summary.json); or a whole suite with a contact sheet");
     cmd->add_option("--seed", args->seed, "scene seed (every random choice derives from it)");
-    cmd->add_option("--garment", args->options.garment,
+    cmd->add_option("--garment", args->choices.garment,
                     "skirt, pants, tshirt, dress, tshirt+pants, tshirt+skirt or random (default)");
-    cmd->add_option("--pose", args->options.pose, "a (A-pose), b (arms down), c (walking) or random (default)");
-    cmd->add_option("--material", args->options.material,
+    cmd->add_option("--pose", args->choices.pose, "a (A-pose), b (arms down), c (walking) or random (default)");
+    cmd->add_option("--material", args->choices.material,
                     "a built-in measured fabric (e.g. gray-interlock) or random (default: a measured fabric "
                     "with bending scale log-uniform in [1, 100])");
     cmd->add_option("--bending-scale", args->options.bending_scale, "fix the bending scale s_b (> 0)");

@@ -1,4 +1,4 @@
-// The renderer (apps/drape/render) against geometry with known answers: projected disks,
+// The renderer (librender, drape::render) against geometry with known answers: projected disks,
 // shadow ellipses, ray distances, texture periods, compositing arithmetic, determinism.
 #include <catch2/catch.hpp>
 
@@ -8,6 +8,8 @@
 #include <drape/render/overlay.hpp>
 #include <drape/render/renderer.hpp>
 
+#include "render_shapes.hpp"
+
 #include <Eigen/Geometry>
 
 #include <cmath>
@@ -16,61 +18,10 @@
 #include <utility>
 
 using namespace drape::render;
+using drape::test::icosphere;
+using drape::test::square;
 
 namespace {
-
-/// An icosphere: subdivided icosahedron projected onto the sphere (vertices exactly on it).
-Mesh icosphere(const Eigen::Vector3d& centre, double radius, int level, int label) {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                      {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<Eigen::Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                      {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                      {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                      {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-    for (auto& p : v) p.normalize();
-    for (int l = 0; l < level; ++l) {
-        std::map<std::pair<int, int>, int> mid;
-        auto midpoint = [&](int a, int b) {
-            const auto key = std::minmax(a, b);
-            const auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            v.push_back((v[a] + v[b]).normalized());
-            return mid[key] = static_cast<int>(v.size()) - 1;
-        };
-        std::vector<Eigen::Vector3i> next;
-        for (const auto& tri : f) {
-            const int a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), c = midpoint(tri[2], tri[0]);
-            next.insert(next.end(), {{tri[0], a, c}, {tri[1], b, a}, {tri[2], c, b}, {a, b, c}});
-        }
-        f = std::move(next);
-    }
-    Mesh m;
-    m.name = "sphere";
-    m.V.resize(static_cast<Eigen::Index>(v.size()), 3);
-    m.N.resize(m.V.rows(), 3);
-    for (size_t i = 0; i < v.size(); ++i) {
-        m.N.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-        m.V.row(static_cast<Eigen::Index>(i)) = (centre + radius * v[i]).transpose();
-    }
-    m.F.resize(static_cast<Eigen::Index>(f.size()), 3);
-    for (size_t i = 0; i < f.size(); ++i) m.F.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
-    m.label = label;
-    return m;
-}
-
-/// A square in the plane z = 0, x and y in [-half, half], UV = (x, y).
-Mesh square(double half, int label) {
-    Mesh m;
-    m.name = "square";
-    m.V.resize(4, 3);
-    m.V << -half, -half, 0, half, -half, 0, half, half, 0, -half, half, 0;
-    m.F.resize(2, 3);
-    m.F << 0, 1, 2, 0, 2, 3;
-    m.UV = m.V.leftCols(2);
-    m.label = label;
-    return m;
-}
 
 /// Distance along the ray to the analytic sphere, or +inf if the ray misses it.
 double ray_sphere(const Ray& r, const Eigen::Vector3d& c, double radius) {

@@ -8,4 +8,5 @@ cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
 cmake -S "$source" -B "$scratch/build" -DCMAKE_PREFIX_PATH="$scratch/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$scratch/build" -j2 >/dev/null
 "$scratch/build/consumer"
+"$scratch/build/consumer_render"
 "$scratch/build/consumer_c"

@@ -84,9 +84,4 @@ void paint_folds(cv::Mat& photo, const cv::Mat& mask, int periods, double contra
         }
 }
 
-double iou(const cv::Mat& a, const cv::Mat& b) {
-    const int u = cv::countNonZero((a != 0) | (b != 0));
-    return u > 0 ? double(cv::countNonZero((a != 0) & (b != 0))) / u : 1.0;
-}
-
 }  // namespace drape::test

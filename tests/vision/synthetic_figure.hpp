@@ -23,7 +23,4 @@ SyntheticFigure make_figure(Bottom bottom = Bottom::skirt, double scale = 1.0);
 /// the bounding box of `mask` into `photo`.
 void paint_folds(cv::Mat& photo, const cv::Mat& mask, int periods, double contrast);
 
-/// Intersection over union of two masks (non-zero = in).
-double iou(const cv::Mat& a, const cv::Mat& b);
-
 }  // namespace drape::test

@@ -3,6 +3,7 @@
 #include <drape/vision/garment_result.hpp>
 #include <drape/vision/image_io.hpp>
 #include <drape/vision/segmentation.hpp>
+#include <drape/vision/segmentation_score.hpp>
 #include <drape/vision/strokes.hpp>
 
 #include <drape/core/errors.hpp>
@@ -41,10 +42,7 @@ bool load_photo(const std::string& name, Photo& p) {
 }
 
 cv::Mat role_mask(const cv::Mat& labels, LabelRole role) {
-    cv::Mat m = cv::Mat::zeros(labels.size(), CV_8UC1);
-    for (size_t i = 0; i < labels.total(); ++i)
-        if (LabelTable::fashionista().role(labels.data[i]) == role) m.data[i] = 255;
-    return m;
+    return vision::role_mask(labels, LabelTable::fashionista(), role);
 }
 
 }  // namespace
@@ -64,7 +62,7 @@ TEST_CASE("stroke-guided and automatic parsing of real photos", "[vision][photos
         INFO(s.brief_report());
         REQUIRE(s.usable());
         for (LabelRole r : {LabelRole::upper_garment, LabelRole::lower_garment}) {
-            const double v = test::iou(role_mask(seg.labels, r), role_mask(p.labels, r));
+            const double v = vision::iou(role_mask(seg.labels, r), role_mask(p.labels, r));
             INFO("strokes, role " << int(r) << " IoU " << v);
             CHECK(v > 0.85);
         }
@@ -73,7 +71,7 @@ TEST_CASE("stroke-guided and automatic parsing of real photos", "[vision][photos
         INFO(a.brief_report());
         REQUIRE(a.usable());
         for (LabelRole r : {LabelRole::upper_garment, LabelRole::lower_garment}) {
-            const double v = test::iou(role_mask(autoseg.labels, r), role_mask(p.labels, r));
+            const double v = vision::iou(role_mask(autoseg.labels, r), role_mask(p.labels, r));
             INFO("auto, role " << int(r) << " IoU " << v);
             CHECK(v > 0.6);
         }
@@ -97,7 +95,7 @@ TEST_CASE("a weaker background distance stops a garment leaking into the backgro
         o.background_distance_factor = factor;
         Segmentation seg;
         REQUIRE(segment_with_strokes(p.image, strokes, &p.joints, o, seg).usable());
-        return test::iou(role_mask(seg.labels, LabelRole::upper_garment), truth);
+        return vision::iou(role_mask(seg.labels, LabelRole::upper_garment), truth);
     };
     const double full = upper_iou(1.0), weak = upper_iou(SegmentationOptions{}.background_distance_factor);
     INFO("t-shirt IoU: factor 1 " << full << ", default " << weak);

@@ -1,4 +1,5 @@
 #include <drape/vision/segmentation.hpp>
+#include <drape/vision/segmentation_score.hpp>
 #include <drape/vision/strokes.hpp>
 
 #include <drape/core/errors.hpp>
@@ -23,7 +24,7 @@ TEST_CASE("stroke-guided segmentation recovers a drawn figure", "[vision][segmen
     CHECK(s.garments_found == 2);
     for (int id : {51, 42, 41}) {
         INFO("class " << id);
-        CHECK(test::iou(seg.labels == id, f.labels == id) > 0.93);
+        CHECK(vision::iou(seg.labels == id, f.labels == id) > 0.93);
     }
     // Stroked pixels keep their class.
     CHECK(cv::countNonZero((strokes != kUnmarked) & (seg.labels != strokes)) == 0);
@@ -32,7 +33,7 @@ TEST_CASE("stroke-guided segmentation recovers a drawn figure", "[vision][segmen
     plain.stroke_colour_weight = 0;
     Segmentation seg_plain;
     REQUIRE(segment_with_strokes(f.photo, strokes, &f.joints, plain, seg_plain).usable());
-    for (int id : {51, 42}) CHECK(test::iou(seg_plain.labels == id, f.labels == id) > 0.93);
+    for (int id : {51, 42}) CHECK(vision::iou(seg_plain.labels == id, f.labels == id) > 0.93);
     // Arms over the t-shirt's side and the face above the collar are occlusion borders.
     CHECK(cv::countNonZero(seg.occlusion) > 0);
 }
@@ -52,8 +53,8 @@ TEST_CASE("the full-resolution band graph cut moves blocky borders onto the imag
     REQUIRE(segment_with_strokes(f.photo, strokes, &f.joints, coarse, a).usable());
     REQUIRE(segment_with_strokes(f.photo, strokes, &f.joints, band, b).usable());
     for (int id : {51, 42}) {
-        const double before = test::iou(a.labels == id, f.labels == id);
-        const double after = test::iou(b.labels == id, f.labels == id);
+        const double before = vision::iou(a.labels == id, f.labels == id);
+        const double after = vision::iou(b.labels == id, f.labels == id);
         INFO("class " << id << ": IoU " << before << " -> " << after);
         CHECK(after > before + 0.01);
         CHECK(after > 0.95);
@@ -84,8 +85,8 @@ TEST_CASE("automatic segmentation finds and classifies the drawn garments", "[vi
         INFO(s.brief_report());
         REQUIRE(s.usable());
         const int lower_id = bottom == test::Bottom::skirt ? 42 : 31;
-        CHECK(test::iou(seg.labels == 51, f.labels == 51) > 0.85);
-        CHECK(test::iou(seg.labels == lower_id, f.labels == lower_id) > 0.85);
+        CHECK(vision::iou(seg.labels == 51, f.labels == 51) > 0.85);
+        CHECK(vision::iou(seg.labels == lower_id, f.labels == lower_id) > 0.85);
         bool has_tshirt = false, has_lower = false;
         for (const auto& [id, type] : seg.garment_types) {
             has_tshirt |= type == GarmentType::t_shirt && id == 51;

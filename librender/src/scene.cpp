@@ -19,9 +19,7 @@ Floor::Floor() { material.colour_srgb = {0.62, 0.58, 0.53}; material.roughness =
 
 Backdrop::Backdrop() { material.colour_srgb = {0.80, 0.80, 0.80}; material.roughness = 1.0; }
 
-namespace {
-
-void validate_mesh(const Mesh& m, size_t index) {
+void validate_mesh(const Mesh& m, std::size_t index) {
     const std::string who = "render mesh " + std::to_string(index) +
                             (m.name.empty() ? std::string() : " ('" + m.name + "')");
     require(m.V.cols() == 3 && m.V.rows() > 0, who, ": V must be #V x 3 with #V > 0, got ",
@@ -44,6 +42,8 @@ void validate_mesh(const Mesh& m, size_t index) {
     std::string why;
     require(m.material.is_valid(&why), who, ": material: ", why);
 }
+
+namespace {
 
 /// A strip of quads along a 2D profile (z, y) extruded along x in [-half_width, half_width].
 Mesh extrude_profile(const std::vector<Eigen::Vector2d>& profile_zy, double half_width) {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,11 @@ struct Backdrop {
     int label = 0;
     Backdrop();
 };
+
+/// Throws drape::InvalidInput naming mesh `index` (and its name) and the problem: no
+/// triangles, bad shapes, indices out of range, non-finite values, bad material, label
+/// outside 0..255, smooth_subdivisions outside 0..4.
+void validate_mesh(const Mesh& mesh, std::size_t index);
 
 struct Scene {
     std::vector<Mesh> meshes;
