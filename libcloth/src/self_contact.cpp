@@ -5,8 +5,10 @@
 #include "psd_projection.hpp"
 #include "second_order.hpp"
 
+#include <drape/core/bvh.hpp>
+#include <drape/core/parallel_for.hpp>
+
 #include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,14 +27,11 @@ using V12 = Vec3<12>;
 // whatever the thread schedule (deterministic output).
 constexpr int kChunk = 256;
 
-int chunk_count(int n) { return (n + kChunk - 1) / kChunk; }
+int chunk_count(int n) { return core::chunk_count(n, kChunk); }
 
 template <class F>
 void for_each_chunk(int n, F&& f) {
-    tbb::parallel_for(0, chunk_count(n), [&](int c) {
-        const int begin = c * kChunk;
-        f(c, begin, std::min(n, begin + kChunk));
-    });
+    core::parallel_for_chunks(n, kChunk, f);
 }
 
 DistanceRegime make_regime(DistanceRegime::Type type, int i, int j, int k = 0) {
@@ -123,103 +122,20 @@ Eigen::AlignedBox3d box_of(const Eigen::MatrixX3d& p, const int* v, int n, doubl
     return b;
 }
 
-// A dense uniform grid in compressed-row form: each stored box is listed in every cell it
-// overlaps, in increasing id order (counting sort, no hashing). Queries visit the cells a box
-// overlaps; indices outside the grid are clamped, which only adds cells to visit, since each
-// entry is tested against its exact box.
-class UniformGrid {
-public:
-    UniformGrid(const std::vector<Eigen::AlignedBox3d>& boxes, double cell) {
-        Eigen::AlignedBox3d all;
-        for (const auto& b : boxes) all.extend(b);
-        if (all.isEmpty()) all.extend(Eigen::Vector3d::Zero());
-        origin_ = all.min();
-        // Cap the cell count (memory) by enlarging the cells if needed: a coarser grid is
-        // slower, never wrong.
-        const double max_cells = std::max(1 << 20, 4 * static_cast<int>(boxes.size()));
-        for (;;) {
-            double cells = 1;
-            for (int a = 0; a < 3; ++a) cells *= std::floor(all.sizes()(a) / cell) + 1;
-            if (cells <= max_cells) break;
-            cell *= std::cbrt(cells / max_cells) * 1.01;
-        }
-        cell_ = cell;
-        for (int a = 0; a < 3; ++a)
-            dims_[a] = static_cast<int>(std::floor(all.sizes()(a) / cell_)) + 1;
-        start_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
-        for (const auto& b : boxes) visit_cells(b, [&](std::size_t c) { ++start_[c + 1]; });
-        for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-        entries_.resize(start_.back());
-        std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
-        for (int id = 0; id < static_cast<int>(boxes.size()); ++id)
-            visit_cells(boxes[id], [&](std::size_t c) { entries_[fill[c]++] = {boxes[id], id}; });
-    }
-
-    /// Calls f(id) once for every stored box that overlaps `box`: a pair is reported only in
-    /// the cell holding the minimum corner of the two boxes' intersection.
-    template <class F>
-    void query(const Eigen::AlignedBox3d& box, F&& f) const {
-        visit_cells(box, [&](std::size_t c) {
-            for (std::size_t e = start_[c]; e < start_[c + 1]; ++e) {
-                const Entry& entry = entries_[e];
-                if (!entry.box.intersects(box)) continue;
-                if (cell_of(box.min().cwiseMax(entry.box.min())) == c) f(entry.id);
-            }
-        });
-    }
-
-private:
-    struct Entry {
-        Eigen::AlignedBox3d box;
-        int id;
-    };
-
-    int index(double x, int axis) const {
-        const double t = std::floor((x - origin_(axis)) / cell_);
-        if (!(t > 0)) return 0;
-        if (t >= dims_[axis] - 1) return dims_[axis] - 1;
-        return static_cast<int>(t);
-    }
-
-    std::size_t linear(int i, int j, int k) const {
-        return (static_cast<std::size_t>(i) * dims_[1] + j) * dims_[2] + k;
-    }
-
-    std::size_t cell_of(const Eigen::Vector3d& x) const {
-        return linear(index(x(0), 0), index(x(1), 1), index(x(2), 2));
-    }
-
-    template <class F>
-    void visit_cells(const Eigen::AlignedBox3d& box, F&& f) const {
-        int lo[3], hi[3];
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = index(box.min()(a), a);
-            hi[a] = index(box.max()(a), a);
-        }
-        for (int i = lo[0]; i <= hi[0]; ++i)
-            for (int j = lo[1]; j <= hi[1]; ++j)
-                for (int k = lo[2]; k <= hi[2]; ++k) f(linear(i, j, k));
-    }
-
-    Eigen::Vector3d origin_;
-    double cell_ = 1;
-    int dims_[3] = {1, 1, 1};
-    std::vector<std::size_t> start_;
-    std::vector<Entry> entries_;
-};
-
 // For each query item i in [0, n): the stored boxes overlapping query_box(i), in increasing
 // id order, passed to test(i, id, out); the outputs are concatenated in item order.
 template <class Item, class QueryBox, class Test>
-std::vector<Item> grid_pairs(int n, const UniformGrid& grid, QueryBox&& query_box, Test&& test) {
-    std::vector<std::vector<Item>> parts(chunk_count(n));
+std::vector<Item> overlap_pairs(int n, const core::Bvh& index, QueryBox&& query_box, Test&& test) {
+    std::vector<std::vector<Item>> parts(static_cast<std::size_t>(chunk_count(n)));
     for_each_chunk(n, [&](int c, int begin, int end) {
         std::vector<int> hits;
         for (int i = begin; i < end; ++i) {
             hits.clear();
-            grid.query(query_box(i), [&](int id) { hits.push_back(id); });
+            const Eigen::AlignedBox3d box = query_box(i);
+            index.traverse([&](const Eigen::AlignedBox3d& b) { return b.intersects(box); },
+                           [&](int id) { hits.push_back(id); });
             std::sort(hits.begin(), hits.end());
-            for (int id : hits) test(i, id, parts[c]);
+            for (int id : hits) test(i, id, parts[static_cast<std::size_t>(c)]);
         }
     });
     std::vector<Item> all;
@@ -528,10 +444,6 @@ void SelfContact::set_rest_filter(const Eigen::MatrixX2d& pattern, const std::ve
     std::sort(pattern_edges.begin(), pattern_edges.end());
     pattern_edges.erase(std::unique(pattern_edges.begin(), pattern_edges.end()), pattern_edges.end());
     const int npe = static_cast<int>(pattern_edges.size());
-    double mean_edge = 0;
-    for (const auto& e : pattern_edges) mean_edge += (rest.row(e[0]) - rest.row(e[1])).norm();
-    mean_edge /= std::max(npe, 1);
-    const double cell = std::max(mean_edge + 2 * min_distance_m, 1e-9);
     // Rows of (row, item) pairs, sorted and without repeats (a vertex with two pattern points
     // may find a face twice).
     auto to_rows = [](std::vector<std::array<int, 2>> found, int rows, std::vector<int>& start,
@@ -550,8 +462,8 @@ void SelfContact::set_rest_filter(const Eigen::MatrixX2d& pattern, const std::ve
         const int q[3] = {pattern_faces(f, 0), pattern_faces(f, 1), pattern_faces(f, 2)};
         tri_boxes[static_cast<std::size_t>(f)] = box_of(rest, q, 3, min_distance_m);
     }
-    const std::vector<std::array<int, 2>> vt = grid_pairs<std::array<int, 2>>(
-        np, UniformGrid(tri_boxes, cell),
+    const std::vector<std::array<int, 2>> vt = overlap_pairs<std::array<int, 2>>(
+        np, core::Bvh(std::move(tri_boxes)),
         [&](int q) { return Eigen::AlignedBox3d(rest.row(q).transpose(), rest.row(q).transpose()); },
         [&](int q, int f, std::vector<std::array<int, 2>>& out) {
             const int t0 = pattern_faces(f, 0), t1 = pattern_faces(f, 1), t2 = pattern_faces(f, 2);
@@ -564,8 +476,8 @@ void SelfContact::set_rest_filter(const Eigen::MatrixX2d& pattern, const std::ve
     std::vector<Eigen::AlignedBox3d> edge_boxes(static_cast<std::size_t>(npe));
     for (int e = 0; e < npe; ++e)
         edge_boxes[static_cast<std::size_t>(e)] = box_of(rest, pattern_edges[static_cast<std::size_t>(e)].data(), 2, min_distance_m);
-    const std::vector<std::array<int, 2>> ee = grid_pairs<std::array<int, 2>>(
-        npe, UniformGrid(edge_boxes, cell),
+    const std::vector<std::array<int, 2>> ee = overlap_pairs<std::array<int, 2>>(
+        npe, core::Bvh(std::move(edge_boxes)),
         [&](int e) { return box_of(rest, pattern_edges[static_cast<std::size_t>(e)].data(), 2, 0.0); },
         [&](int e, int o, std::vector<std::array<int, 2>>& out) {
             const auto& a = pattern_edges[static_cast<std::size_t>(e)];
@@ -604,12 +516,6 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
     const int nf = static_cast<int>(faces_.rows()), ne = static_cast<int>(edges_.size());
     if (nf == 0 || vertex_count_ == 0) return;
 
-    double mean_edge = 0;
-    for (const auto& e : edges_) mean_edge += (p.row(e[0]) - p.row(e[1])).norm();
-    mean_edge /= std::max(ne, 1);
-    // Cells as wide as a typical inflated primitive box: each box covers <= 2 cells per
-    // axis, and a cell holds few boxes.
-    const double cell = std::max(mean_edge + 2 * radius, 1e-9);
     const double r2 = radius * radius;
 
     // Vertex–triangle: triangles inflated by the radius, queried at each vertex.
@@ -618,10 +524,10 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
         const int v[3] = {faces_(f, 0), faces_(f, 1), faces_(f, 2)};
         tri_boxes[f] = box_of(p, v, 3, radius);
     }
-    const UniformGrid tri_grid(tri_boxes, cell);
+    const core::Bvh tri_index(std::move(tri_boxes));
 
-    const std::vector<FoundPair> vt = grid_pairs<FoundPair>(
-        vertex_count_, tri_grid,
+    const std::vector<FoundPair> vt = overlap_pairs<FoundPair>(
+        vertex_count_, tri_index,
         [&](int v) { return Eigen::AlignedBox3d(p.row(v).transpose(), p.row(v).transpose()); },
         [&](int v, int f, std::vector<FoundPair>& out) {
             const int t0 = faces_(f, 0), t1 = faces_(f, 1), t2 = faces_(f, 2);
@@ -634,10 +540,10 @@ void SelfContact::find_candidates(const Eigen::MatrixX3d& p, double radius) {
     // Edge–edge: edges inflated by the radius, queried with each edge's own box.
     std::vector<Eigen::AlignedBox3d> edge_boxes(ne);
     for (int e = 0; e < ne; ++e) edge_boxes[e] = box_of(p, edges_[e].data(), 2, radius);
-    const UniformGrid edge_grid(edge_boxes, cell);
+    const core::Bvh edge_index(std::move(edge_boxes));
 
-    const std::vector<FoundPair> ee = grid_pairs<FoundPair>(
-        ne, edge_grid, [&](int e) { return box_of(p, edges_[e].data(), 2, 0.0); },
+    const std::vector<FoundPair> ee = overlap_pairs<FoundPair>(
+        ne, edge_index, [&](int e) { return box_of(p, edges_[e].data(), 2, 0.0); },
         [&](int e, int o, std::vector<FoundPair>& out) {
             if (o <= e) return;
             const int a0 = edges_[e][0], a1 = edges_[e][1], b0 = edges_[o][0], b1 = edges_[o][1];
@@ -709,13 +615,13 @@ double SelfContact::energy(const Eigen::MatrixX3d& q, const SelfContactParams& p
     if (hessians) hessians->resize(offset + m);
     std::vector<Vector12d> gradients(gradient ? m : 0);
     std::vector<double> energies(m);
-    tbb::parallel_for(0, m, [&](int j) {
+    core::parallel_for(m, [&](int j) {
         const ContactPair& pair = candidates_[order[j]];
         energies[j] = pair_energy(pair.kind, gather(q, pair), params,
                                   gradient ? &gradients[j] : nullptr,
                                   hessians ? &(*hessians)[offset + j].hessian : nullptr, mode);
         if (hessians) (*hessians)[offset + j].pair = pair;
-    });
+    }, 1);
     double total = 0;
     for (int j = 0; j < m; ++j) {
         total += energies[j];

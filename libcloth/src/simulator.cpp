@@ -4,13 +4,12 @@
 #include <drape/cloth/energies.hpp>
 #include <drape/cloth/intersections.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/parallel_for.hpp>
 
 #include "self_contact.hpp"
 #include "sparse_solver.hpp"
 
 #include <Eigen/SparseCore>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -51,13 +50,6 @@ const char* to_string(StepTermination t) {
         case StepTermination::cancelled: return "cancelled";
     }
     return "unknown";
-}
-
-template <typename F>
-void parallel_range(int n, F&& body, int grain = 256) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
-        for (int i = r.begin(); i != r.end(); ++i) body(i);
-    });
 }
 
 // Union-find over vertex ids (pieces of a mesh, stitched vertex groups).
@@ -291,7 +283,7 @@ struct Simulator::Impl {
     // underarm vertex alternated 1.7 mm for 400 steps and kept the garment from rest.
     void refresh_stiffness(const Eigen::MatrixX3d& p, bool relax = false) {
         k_stretch.resize(triangles.size());
-        parallel_range(mesh.face_count(), [&](int f) {
+        core::parallel_for(mesh.face_count(), [&](int f) {
             k_stretch[static_cast<std::size_t>(f)] = stretching_stiffness(
                 material_of(f), green_strain(face_positions(p, f), triangles[static_cast<std::size_t>(f)]));
         });
@@ -353,12 +345,12 @@ struct Simulator::Impl {
         pattern.setFromTriplets(entries.begin(), entries.end());
         pattern.makeCompressed();
         face_slots.assign(static_cast<std::size_t>(81 * mesh.face_count()), -1);
-        parallel_range(mesh.face_count(), [&](int f) {
+        core::parallel_for(mesh.face_count(), [&](int f) {
             const int verts[3] = {mesh.faces(f, 0), mesh.faces(f, 1), mesh.faces(f, 2)};
             fill_slots(verts, 3, face_slots.data() + 81 * f);
         });
         hinge_slots.assign(144 * hinges.size(), -1);
-        parallel_range(static_cast<int>(hinges.size()), [&](int h) {
+        core::parallel_for(static_cast<int>(hinges.size()), [&](int h) {
             fill_slots(hinges[static_cast<std::size_t>(h)].v.data(), 4,
                        hinge_slots.data() + 144 * h);
         });
@@ -423,7 +415,7 @@ struct Simulator::Impl {
         // Each vertex's entry still holds its previous distance until it is overwritten.
         const bool known = contacts.size() == static_cast<std::size_t>(p.rows());
         if (!known) contacts.assign(static_cast<std::size_t>(p.rows()), VertexContact{});
-        parallel_range(static_cast<int>(p.rows()), [&](int i) {
+        core::parallel_for(static_cast<int>(p.rows()), [&](int i) {
             VertexContact& c = contacts[static_cast<std::size_t>(i)];
             const double previous = known ? c.distance : -std::numeric_limits<double>::infinity();
             c = VertexContact{};
@@ -537,7 +529,7 @@ struct Simulator::Impl {
             face_hess.resize(static_cast<std::size_t>(nf));
             hinge_hess.resize(static_cast<std::size_t>(nh));
         }
-        parallel_range(nf, [&](int f) {
+        core::parallel_for(nf, [&](int f) {
             const auto fs = static_cast<std::size_t>(f);
             face_energy[fs] = stretching_energy(face_positions(p, f), triangles[fs], k_stretch[fs],
                                                 want_g ? &face_grad[fs] : nullptr,
@@ -550,7 +542,7 @@ struct Simulator::Impl {
         // make the projected Newton converge only linearly) stays exact.
         const HessianMode bending_mode =
             hessian_mode == HessianMode::exact ? HessianMode::gauss_newton : hessian_mode;
-        parallel_range(nh, [&](int h) {
+        core::parallel_for(nh, [&](int h) {
             const auto hs = static_cast<std::size_t>(h);
             hinge_energy[hs] = bending_energy(hinge_positions(p, hinges[hs]), hinge_rests[hs],
                                               bend_curves[hs], want_g ? &hinge_grad[hs] : nullptr,
