@@ -148,7 +148,7 @@ double Simulator::Impl::potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gr
     // cloth, so time steps use it while stretching (whose compressed elements are what
     // make the projected Newton converge only linearly) stays exact.
     const HessianMode bending_mode =
-        hessian_mode == HessianMode::exact ? HessianMode::gauss_newton : hessian_mode;
+        hessian_mode == HessianMode::exact && !exact_hessians ? HessianMode::gauss_newton : hessian_mode;
     core::parallel_for(nh, [&](int h) {
         const auto hs = static_cast<std::size_t>(h);
         hinge_energy[hs] = bending_energy(hinge_positions(p, hinges[hs]), hinge_rests[hs],
@@ -196,7 +196,8 @@ double Simulator::Impl::potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gr
         const Stitch& st = stitches[k];
         const double ks = options.stitch_stiffness_n_per_m2 * st.length_m;
         e += stitch_energy(p.row(st.a).transpose(), p.row(st.b).transpose(), stitch_rest[k], ks,
-                           want_g ? &g6 : nullptr, want_h ? &h6 : nullptr);
+                           want_g ? &g6 : nullptr, want_h ? &h6 : nullptr,
+                           exact_hessians ? hessian_mode : HessianMode::projected_psd);
         const int verts[2] = {st.a, st.b};
         if (want_g || want_h)
             scatter(verts, 2, want_g ? g6.data() : nullptr, want_h ? h6.data() : nullptr,
@@ -238,7 +239,8 @@ double Simulator::Impl::potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gr
     // Self-contact.
     if (options.self_contact && !self_contact.candidates().empty()) {
         internal::SelfContactParams params{options.contact_thickness_m, self_contact_stiffness()};
-        e += self_contact.energy(p, params, gradient, want_h ? pair_hessians : nullptr);
+        e += self_contact.energy(p, params, gradient, want_h ? pair_hessians : nullptr,
+                                 exact_hessians ? hessian_mode : HessianMode::gauss_newton);
     }
     // Cloth–cloth friction: μ λ f₀ of the closest points' relative slip u = Σ w_c Δx_c
     // (frame lagged); gradient w_c ∇f₀, Hessian (w wᵀ) ⊗ ∇²f₀ (PSD).

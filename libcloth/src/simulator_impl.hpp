@@ -148,6 +148,10 @@ struct Simulator::Impl {
     // and the slip distance ε is that of the damping time (stiction around that state).
     bool static_friction = false;
     HessianMode hessian_mode = HessianMode::gauss_newton;  // of the elastic terms, this iteration
+    // Every term with its own Hessian in hessian_mode (bending, stitches and self-contact
+    // otherwise use Gauss–Newton or PSD forms): set only by the finite-difference test hook
+    // (potential_probe.hpp).
+    bool exact_hessians = false;
 
     // Element buffers (filled in parallel, scattered serially for determinism).
     std::vector<double> face_energy, hinge_energy;

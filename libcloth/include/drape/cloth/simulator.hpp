@@ -167,6 +167,10 @@ struct Stitch {
     double length_m = 0;  ///< seam length this stitch stands for (for its stiffness), > 0
 };
 
+namespace internal {
+class PotentialProbe;  // a test hook in libcloth/src (not part of the API)
+}
+
 /// A piece of cloth in time. Owns its state; distinct simulators may run on distinct threads.
 class Simulator {
 public:
@@ -242,6 +246,7 @@ public:
     Eigen::MatrixX3d forces() const;
 
 private:
+    friend class internal::PotentialProbe;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
