@@ -18,7 +18,7 @@
 #include <drape/core/errors.hpp>
 #include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
-#include <drape/garment/eval_bodies.hpp>
+#include <drape/fixtures/eval_bodies.hpp>
 #include <drape/garment/garment_export.hpp>
 #include <drape/garment/dress_outfit.hpp>
 #include <drape/garment/dressing.hpp>

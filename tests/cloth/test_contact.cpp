@@ -5,7 +5,7 @@
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/local_curvature.hpp>
 #include <drape/cloth/obstacle.hpp>
-#include <drape/cloth/scenes.hpp>
+#include <drape/fixtures/cloth_scenes.hpp>
 #include <drape/cloth/simulator.hpp>
 #include <drape/core/errors.hpp>
 

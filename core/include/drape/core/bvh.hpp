@@ -69,6 +69,25 @@ public:
     void nearest(const Eigen::Vector3d& p, double& best_squared_distance, Leaf&& leaf) const;
 
 private:
+    // The depth-first traversal stack, starting at the root (unless the tree is empty). The
+    // tree's depth is below 64 for any item count an int can hold, so two pushes per level
+    // always fit; a push that would not is dropped rather than overflow.
+    class Stack {
+    public:
+        explicit Stack(bool empty_tree) : top_(empty_tree ? 0 : 1) {}
+        bool empty() const { return top_ == 0; }
+        int pop() { return items_[static_cast<std::size_t>(--top_)]; }
+        void push_two(int first, int second) {
+            if (top_ + 2 > static_cast<int>(items_.size())) return;
+            items_[static_cast<std::size_t>(top_++)] = first;
+            items_[static_cast<std::size_t>(top_++)] = second;
+        }
+
+    private:
+        std::array<int, 128> items_{};  // items_[0] = 0: the root
+        int top_;
+    };
+
     struct Node {
         Box3 box;
         int second = -1;  ///< the second child; -1 for a leaf (the first child is index + 1)
@@ -86,12 +105,9 @@ private:
 
 template <class Overlaps, class Visit>
 void Bvh::traverse(Overlaps&& overlaps, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    std::array<int, 128> stack{};
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = 0;
-    while (top > 0) {
-        const int index = stack[static_cast<std::size_t>(--top)];
+    Stack stack(nodes_.empty());
+    while (!stack.empty()) {
+        const int index = stack.pop();
         const Node& node = nodes_[static_cast<std::size_t>(index)];
         if (!overlaps(node.box)) continue;
         if (node.second < 0) {
@@ -99,21 +115,17 @@ void Bvh::traverse(Overlaps&& overlaps, Visit&& visit) const {
                 const int id = order_[static_cast<std::size_t>(i)];
                 if (overlaps(boxes_[static_cast<std::size_t>(id)])) visit(id);
             }
-        } else if (top + 2 <= static_cast<int>(stack.size())) {  // depth < 64: always
-            stack[static_cast<std::size_t>(top++)] = index + 1;
-            stack[static_cast<std::size_t>(top++)] = node.second;
+        } else {
+            stack.push_two(index + 1, node.second);
         }
     }
 }
 
 template <class Leaf>
 void Bvh::nearest(const Eigen::Vector3d& p, double& best, Leaf&& leaf) const {
-    if (nodes_.empty()) return;
-    std::array<int, 128> stack{};
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = 0;
-    while (top > 0) {
-        const int index = stack[static_cast<std::size_t>(--top)];
+    Stack stack(nodes_.empty());
+    while (!stack.empty()) {
+        const int index = stack.pop();
         const Node& node = nodes_[static_cast<std::size_t>(index)];
         if (squared_distance(node.box, p) >= best) continue;
         if (node.second < 0) {
@@ -128,14 +140,10 @@ void Bvh::nearest(const Eigen::Vector3d& p, double& best, Leaf&& leaf) const {
         const int first = index + 1;
         const double d_first = squared_distance(nodes_[static_cast<std::size_t>(first)].box, p);
         const double d_second = squared_distance(nodes_[static_cast<std::size_t>(node.second)].box, p);
-        if (top + 2 > static_cast<int>(stack.size())) continue;  // depth < 64: always
-        if (d_first < d_second) {  // the nearer child is popped first
-            stack[static_cast<std::size_t>(top++)] = node.second;
-            stack[static_cast<std::size_t>(top++)] = first;
-        } else {
-            stack[static_cast<std::size_t>(top++)] = first;
-            stack[static_cast<std::size_t>(top++)] = node.second;
-        }
+        if (d_first < d_second)  // the nearer child is popped first
+            stack.push_two(node.second, first);
+        else
+            stack.push_two(first, node.second);
     }
 }
 
