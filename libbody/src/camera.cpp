@@ -1,6 +1,7 @@
 #include <drape/body/camera.hpp>
 
 #include <drape/core/errors.hpp>
+#include <drape/core/scan_triangle.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -80,33 +81,11 @@ Mask render_silhouette(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const
             continue;
         const Eigen::Vector2d pa = P.row(a), pb = P.row(b), pc = P.row(c);
         if (!pa.allFinite() || !pb.allFinite() || !pc.allFinite()) continue;
-        const double area = (pb - pa).x() * (pc - pa).y() - (pb - pa).y() * (pc - pa).x();
-        if (area == 0) continue;
         // Pixel (x, y) is covered when its centre (x + 0.5, y + 0.5) lies in the triangle;
         // either winding counts (the silhouette does not care which side faces the camera).
-        const double min_x = std::min({pa.x(), pb.x(), pc.x()});
-        const double max_x = std::max({pa.x(), pb.x(), pc.x()});
-        const double min_y = std::min({pa.y(), pb.y(), pc.y()});
-        const double max_y = std::max({pa.y(), pb.y(), pc.y()});
-        const int x0 = std::max(0, static_cast<int>(std::ceil(min_x - 0.5)));
-        const int x1 = std::min(width - 1, static_cast<int>(std::floor(max_x - 0.5)));
-        const int y0 = std::max(0, static_cast<int>(std::ceil(min_y - 0.5)));
-        const int y1 = std::min(height - 1, static_cast<int>(std::floor(max_y - 0.5)));
-        const double sign = area > 0 ? 1.0 : -1.0;
-        auto edge = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, double x, double y) {
-            return (q.x() - p.x()) * (y - p.y()) - (q.y() - p.y()) * (x - p.x());
-        };
-        for (int y = y0; y <= y1; ++y) {
-            const double cy = y + 0.5;
-            for (int x = x0; x <= x1; ++x) {
-                const double cx = x + 0.5;
-                const double e0 = sign * edge(pa, pb, cx, cy);
-                const double e1 = sign * edge(pb, pc, cx, cy);
-                const double e2 = sign * edge(pc, pa, cx, cy);
-                if (e0 >= 0 && e1 >= 0 && e2 >= 0)
-                    mask.pixels[static_cast<size_t>(y) * width + x] = 1;
-            }
-        }
+        core::scan_triangle(pa, pb, pc, width, height, [&](int x, int y, double, double, double) {
+            mask.pixels[static_cast<size_t>(y) * width + x] = 1;
+        });
     }
     return mask;
 }

@@ -1,6 +1,7 @@
 #include <drape/render/rasterize.hpp>
 
 #include <drape/core/errors.hpp>
+#include <drape/core/scan_triangle.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -53,39 +54,19 @@ struct Target {
     std::uint8_t* coverage;  ///< this mesh's mask, or null
 };
 
-// Pixel (x, y) is covered when its centre (x + 0.5, y + 0.5) lies in the triangle or on an
-// edge (edge functions of either sign convention, so both windings count).
+// The pixels of a triangle (core::scan_triangle: pixel centres inside or on an edge, either
+// winding), z-buffered on the interpolated nearness.
 void draw_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                    float qa, float qb, float qc, std::int16_t index, Target& t) {
-    const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-    if (!(area != 0.0) || !std::isfinite(area)) return;  // degenerate, or not finite
-    const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({a.x(), b.x(), c.x()}) - 0.5)));
-    const int x1 = std::min(t.width - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}) - 0.5)));
-    const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({a.y(), b.y(), c.y()}) - 0.5)));
-    const int y1 = std::min(t.height - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}) - 0.5)));
-    if (x0 > x1 || y0 > y1) return;
-    // Barycentric weights of corners a, b, c are the edge functions of the opposite edges
-    // divided by the signed area; a pixel is inside when all three are >= 0.
-    const double inv = 1.0 / area;
-    const double ax = (c.y() - b.y()) * inv, bx = (a.y() - c.y()) * inv, cx = (b.y() - a.y()) * inv;
-    for (int y = y0; y <= y1; ++y) {
-        const double py = y + 0.5, px0 = x0 + 0.5;
-        // w_k(px) = w_k(px0) - d_k (px - px0), with d_k the coefficients above.
-        double wa = ((c.x() - b.x()) * (py - b.y()) - (c.y() - b.y()) * (px0 - b.x())) * inv;
-        double wb = ((a.x() - c.x()) * (py - c.y()) - (a.y() - c.y()) * (px0 - c.x())) * inv;
-        double wc = ((b.x() - a.x()) * (py - a.y()) - (b.y() - a.y()) * (px0 - a.x())) * inv;
-        const size_t row = static_cast<size_t>(y) * static_cast<size_t>(t.width);
-        for (int x = x0; x <= x1; ++x, wa -= ax, wb -= bx, wc -= cx) {
-            if (wa < 0 || wb < 0 || wc < 0) continue;
-            const size_t k = row + static_cast<size_t>(x);
-            if (t.coverage) t.coverage[k] = 255;
-            const float q = static_cast<float>(wa * qa + wb * qb + wc * qc);
-            if (q > t.zbuffer[k]) {
-                t.zbuffer[k] = q;
-                t.mesh_index[k] = index;
-            }
+    core::scan_triangle(a, b, c, t.width, t.height, [&](int x, int y, double wa, double wb, double wc) {
+        const size_t k = static_cast<size_t>(y) * static_cast<size_t>(t.width) + static_cast<size_t>(x);
+        if (t.coverage) t.coverage[k] = 255;
+        const float q = static_cast<float>(wa * qa + wb * qb + wc * qc);
+        if (q > t.zbuffer[k]) {
+            t.zbuffer[k] = q;
+            t.mesh_index[k] = index;
         }
-    }
+    });
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include <drape/render/renderer.hpp>
 
 #include <drape/core/errors.hpp>
+#include <drape/core/vertex_normals.hpp>
 
 #include <Eigen/Geometry>
 
@@ -262,7 +263,7 @@ Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     impl_->user_meshes = scene.meshes.size();
     for (Mesh& m : impl_->meshes) {
         if (m.smooth_subdivisions > 0) m = phong_tessellate(m, m.smooth_subdivisions);
-        if (m.N.size() == 0) m.N = vertex_normals(m.V, m.F);
+        if (m.N.size() == 0) m.N = core::vertex_normals(m.V, m.F);
     }
     for (Mesh& m : stage_meshes(scene)) impl_->meshes.push_back(std::move(m));
     for (const Mesh& m : impl_->meshes)

@@ -1,6 +1,7 @@
 #include <drape/render/scene.hpp>
 
 #include <drape/core/errors.hpp>
+#include <drape/core/vertex_normals.hpp>
 
 #include <Eigen/Geometry>
 
@@ -66,7 +67,7 @@ Mesh extrude_profile(const std::vector<Eigen::Vector2d>& profile_zy, double half
         m.F.row(2 * i) << a, c, b;
         m.F.row(2 * i + 1) << b, c, d;
     }
-    m.N = vertex_normals(m.V, m.F);
+    m.N = core::vertex_normals(m.V, m.F);
     return m;
 }
 
@@ -96,20 +97,6 @@ void Scene::validate() const {
     }
 }
 
-Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-    Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-        const Eigen::Vector3d n = (b - a).cross(c - a);  // length = 2 x area: area weighting
-        for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
-    }
-    for (Eigen::Index v = 0; v < N.rows(); ++v) {
-        const double len = N.row(v).norm();
-        if (len > 0) N.row(v) /= len;
-    }
-    return N;
-}
-
 Mesh phong_tessellate(const Mesh& mesh, int levels, double alpha) {
     require(levels >= 0, "phong_tessellate: levels must be >= 0, got ", levels);
     require(alpha >= 0 && alpha <= 1, "phong_tessellate: alpha must be in [0, 1], got ", alpha);
@@ -127,7 +114,7 @@ Mesh phong_tessellate(const Mesh& mesh, int levels, double alpha) {
             for (int k = 0; k < 3; ++k) Fg(f, k) = group[static_cast<std::size_t>(m.F(f, k))];
         Eigen::MatrixXd Vg(static_cast<Eigen::Index>(group_of.size()), 3);
         for (Eigen::Index i = 0; i < m.V.rows(); ++i) Vg.row(group[static_cast<std::size_t>(i)]) = m.V.row(i);
-        const Eigen::MatrixXd Ng = vertex_normals(Vg, Fg);
+        const Eigen::MatrixXd Ng = core::vertex_normals(Vg, Fg);
         m.N.resize(m.V.rows(), 3);
         for (Eigen::Index i = 0; i < m.V.rows(); ++i) m.N.row(i) = Ng.row(group[static_cast<std::size_t>(i)]);
     }

@@ -7,6 +7,7 @@
 #include <drape/body/pose.hpp>
 #include <drape/body/shape_body.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/vertex_normals.hpp>
 #include <drape/render/rasterize.hpp>
 #include <drape/render/renderer.hpp>
 #include <drape/vision/segmentation_score.hpp>
@@ -178,7 +179,7 @@ TEST_CASE("the rasteriser's labels agree with the path tracer's on a body + garm
     const Eigen::MatrixXd V = drape::body::pose_body(model, shaped, drape::body::Pose::rest()).vertices;
     const Eigen::MatrixXi F = model.faces;
     const double y_min = V.col(1).minCoeff(), h = V.col(1).maxCoeff() - y_min;
-    const Eigen::MatrixXd N = vertex_normals(V, F);
+    const Eigen::MatrixXd N = drape::core::vertex_normals(V, F);
     std::vector<Eigen::Vector3i> shell;
     for (Eigen::Index f = 0; f < F.rows(); ++f) {
         bool torso = true;

@@ -78,9 +78,6 @@ struct Scene {
     void validate() const;
 };
 
-/// Area-weighted vertex normals (#V x 3, unit; zero rows for unreferenced vertices).
-Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
-
 /// The stage geometry of `scene` (floor, backdrop, cove) as meshes (UV = world x and the
 /// arc length along the floor/wall profile). Empty when both are disabled.
 std::vector<Mesh> stage_meshes(const Scene& scene);
