@@ -4,6 +4,7 @@
 #include <drape/core/errors.hpp>
 #include <drape/core/parallel_for.hpp>
 #include <drape/core/point_in_mesh.hpp>
+#include <drape/core/scan_triangle.hpp>
 #include <drape/core/vertex_normals.hpp>
 
 #include <catch2/catch.hpp>
@@ -176,4 +177,43 @@ TEST_CASE("parallel loops: every index once, chunks concatenated in order", "[co
     CHECK(drape::core::chunk_count(0, 256) == 0);
     CHECK(drape::core::chunk_count(257, 256) == 2);
     drape::core::parallel_for(0, [](int) { FAIL("no index in an empty range"); });
+}
+
+TEST_CASE("scan_triangle visits exactly the pixel centres inside a triangle, with barycentric weights",
+          "[core][raster]") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> coord(-5.0, 45.0);
+    const int W = 40, H = 30;
+    int visited_total = 0;
+    for (int t = 0; t < 200; ++t) {
+        const Eigen::Vector2d a(coord(rng), coord(rng)), b(coord(rng), coord(rng)), c(coord(rng), coord(rng));
+        std::vector<int> hits(size_t(W * H), 0);
+        drape::core::scan_triangle(a, b, c, W, H, [&](int x, int y, double wa, double wb, double wc) {
+            REQUIRE((x >= 0 && x < W && y >= 0 && y < H));
+            ++hits[size_t(y * W + x)];
+            CHECK(std::abs(wa + wb + wc - 1.0) < 1e-9);
+            const Eigen::Vector2d p = wa * a + wb * b + wc * c;  // the weights interpolate the centre
+            CHECK((p - Eigen::Vector2d(x + 0.5, y + 0.5)).norm() < 1e-7);
+        });
+        // Brute force with exact edge functions; centres within 1e-9 of an edge may go either way.
+        const auto edge = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
+            return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+        };
+        const double area = edge(a, b, c);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const Eigen::Vector2d p(x + 0.5, y + 0.5);
+                const double e0 = edge(b, c, p) / area, e1 = edge(c, a, p) / area, e2 = edge(a, b, p) / area;
+                const double margin = std::min({e0, e1, e2});
+                const int h = hits[size_t(y * W + x)];
+                CHECK(h <= 1);
+                if (margin > 1e-9) CHECK(h == 1);
+                if (margin < -1e-9) CHECK(h == 0);
+                visited_total += h;
+            }
+    }
+    CHECK(visited_total > 1000);  // not a vacuous pass: the triangles cover many pixels
+    int degenerate = 0;
+    drape::core::scan_triangle({1, 1}, {5, 5}, {9, 9}, W, H, [&](int, int, double, double, double) { ++degenerate; });
+    CHECK(degenerate == 0);
 }
