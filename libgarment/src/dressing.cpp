@@ -250,7 +250,7 @@ void open_armholes(const Pattern& pattern, const GarmentMesh& mesh, const body::
                    const detail::AxisEnvelope arms[2], double clearance, Eigen::MatrixX3d& X) {
     const int nv = int(X.rows());
     const auto panel_v = [&](int v) { return size_t(mesh.panel_of_vertex(v)); };
-    const auto role_v = [&](int v) { return detail::role_of(pattern, pattern.panels[panel_v(v)].name); };
+    const auto role_v = [&](int v) { return detail::role_of(pattern, panel_v(v)); };
     // Armhole vertices: torso vertex -> arm (0 left, 1 right).
     std::vector<int> arm_of(size_t(nv), -1);
     for (const auto& st : mesh.stitches)
@@ -311,7 +311,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
     const auto J = [&](Joint j) -> Eigen::Vector3d { return skel.joints.row(index(j)).transpose(); };
     const int nv = int(X.rows());
     std::vector<detail::Role> role(pattern.panels.size());
-    for (size_t p = 0; p < pattern.panels.size(); ++p) role[p] = detail::role_of(pattern, pattern.panels[p].name);
+    for (size_t p = 0; p < pattern.panels.size(); ++p) role[p] = detail::role_of(pattern, p);
     const auto role_v = [&](int v) { return role[size_t(mesh.panel_of_vertex(v))]; };
     const auto left_v = [&](int v) {
         const BodyPart part = pattern.placements[size_t(mesh.panel_of_vertex(v))].body_part;
@@ -444,8 +444,8 @@ Eigen::MatrixX3i sewn_faces(const GarmentMesh& mesh) {
 }
 
 bool has_sleeves(const Pattern& pattern) {
-    for (const Panel& panel : pattern.panels)
-        if (role_of(pattern, panel.name) == Role::sleeve) return true;
+    for (size_t p = 0; p < pattern.panels.size(); ++p)
+        if (role_of(pattern, p) == Role::sleeve) return true;
     return false;
 }
 
@@ -697,7 +697,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     // section + ease (skirt_waistband) started stretched over a belly wider than it, and its
     // waistband then cut into it (docs/dressing.md).
     double skirt_waist_y = std::numeric_limits<double>::quiet_NaN();
-    if (pattern.name == "circle_skirt") {
+    if (detail::is_skirt(pattern)) {
         double waist_cm = 0;
         for (size_t p = 0; p < pattern.panels.size(); ++p)
             if (const int e = detail::waist_edge(pattern, p); e >= 0) waist_cm += pattern.panels[p].edges[size_t(e)].length();
@@ -745,7 +745,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         // The pants' pelvis part moves with the pelvis alone (blended into the legs over the
         // crotch), so the two legs do not drag the crotch across each other in a stride.
         const double pw = pelvis_weight(v);
-        if (detail::role_of(pattern, pattern.panels[panel].name) == detail::Role::leg)
+        if (detail::role_of(pattern, panel) == detail::Role::leg)
             p = pw * (skel.skinning[size_t(index(Joint::pelvis))] * Eigen::Vector3d(X.row(v).transpose())) + (1 - pw) * p;
         X.row(v) = p.transpose();
     }
@@ -760,7 +760,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         // Sleeves are placed anew on the posed arms (not deformed from the skinned state):
         // they take their new places at once, the rest moves guarded.
         for (int v = 0; v < nv; ++v)
-            if (detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve)
+            if (detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))) == detail::Role::sleeve)
                 X.row(v) = placed.row(v);
         // A vertex whose move would cross a neighbour that has not moved yet (the two sides
         // of an armhole start on one line) gets another pass once they have (see
@@ -782,7 +782,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     std::vector<double> edge_weight(edges.size(), 1.0);
     std::vector<bool> zero_rest(edges.size(), false);
     const auto is_sleeve = [&](int v) {
-        return detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve;
+        return detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))) == detail::Role::sleeve;
     };
     for (const auto& st : mesh.stitches) {
         // Sleeve caps start open, down the arm (kSleeveOffsetM): the simulation sews them.
@@ -802,7 +802,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         for (int v = 0; v < nv; ++v) {
             const Eigen::Vector3d x = X.row(v).transpose();
             const int b = nearest_vertex(body_v, x);
-            if (!obstacle_for(detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name),
+            if (!obstacle_for(detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))),
                               dominant[size_t(b)]))
                 continue;
             const Eigen::Vector3d p = body_v.row(b).transpose(), n = body_n.row(b).transpose();

@@ -40,9 +40,14 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
 /// in the panel's pattern frame, or -1 (no open edge).
 int waist_edge(const Pattern& pattern, size_t panel);
 
-/// How a panel of a built-in template is placed (hint: other patterns).
+/// How a panel is wrapped and placed: its declared PanelRole without front / back (the
+/// placement's body part says that; hint: PanelRole::other).
 enum class Role { torso, sleeve, skirt, leg, hint };
-Role role_of(const Pattern& pattern, const std::string& panel);
+Role role_of(const Pattern& pattern, size_t panel);
+
+/// Whether every panel is a skirt panel (a skirt hanging from the waist; a dress's skirt
+/// hangs from its bodice).
+bool is_skirt(const Pattern& pattern);
 
 /// A radial envelope around a joint chain (a polyline, extended beyond both ends): for
 /// each arc length s along the axis (1 cm bins) and angle about it (5 degree bins), the
