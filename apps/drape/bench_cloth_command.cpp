@@ -7,7 +7,7 @@
 #include "material_arg.hpp"
 
 #include <drape/cloth/material.hpp>
-#include <drape/cloth/scenes.hpp>
+#include <drape/fixtures/cloth_scenes.hpp>
 #include <drape/cloth/simulator.hpp>
 #include <drape/core/errors.hpp>
 

@@ -9,6 +9,8 @@
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/skeleton.hpp>
+#include <drape/core/parallel_for.hpp>
+#include <drape/core/vertex_normals.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -164,38 +166,12 @@ Eigen::SparseMatrix<double> mannequin_skin_weights(const MannequinImplicit& body
 /// Tailor landmarks picked as extreme vertices of anatomical regions.
 Landmarks mannequin_landmarks(const MannequinImplicit& body, const Eigen::MatrixXd& V);
 
-/// Area-weighted vertex normals (#V x 3, unit).
-Eigen::MatrixXd mannequin_vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
-
-/// Runs f(i) for i in [0, n) on up to two threads (deterministic when f(i) only writes
-/// slot i).
-template <class Fn>
-void parallel_for(int n, const Fn& f);
-
-}  // namespace drape::body::detail
-
-#include <thread>
-
-namespace drape::body::detail {
-template <class Fn>
-void parallel_for(int n, const Fn& f) {
-    const unsigned hw = std::thread::hardware_concurrency();
-    const int threads = static_cast<int>(hw == 0 ? 1 : (hw > 4 ? 4 : hw));
-    if (threads <= 1 || n < 512) {
-        for (int i = 0; i < n; ++i) f(i);
-        return;
-    }
-    std::vector<std::thread> pool;
-    pool.reserve(static_cast<size_t>(threads - 1));
-    const int chunk = (n + threads - 1) / threads;
-    for (int t = 1; t < threads; ++t) {
-        const int begin = t * chunk;
-        const int end = begin + chunk < n ? begin + chunk : n;
-        pool.emplace_back([&f, begin, end] {
-            for (int i = begin; i < end; ++i) f(i);
-        });
-    }
-    for (int i = 0; i < (chunk < n ? chunk : n); ++i) f(i);
-    for (auto& th : pool) th.join();
+/// Area-weighted vertex normals (#V x 3, unit; zero rows for isolated vertices).
+inline Eigen::MatrixXd mannequin_vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+    return core::vertex_normals(V, F);
 }
+
+/// Parallel loops come from the geometry layer (deterministic when f(i) only writes slot i).
+using core::parallel_for;
+
 }  // namespace drape::body::detail

@@ -88,20 +88,6 @@ bool max_entropy_weights(const std::vector<Vector3d>& pts, const std::vector<dou
 
 }  // namespace
 
-Eigen::MatrixXd mannequin_vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-    Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
-    for (int f = 0; f < F.rows(); ++f) {
-        const Vector3d a = row(V, F(f, 0)), b = row(V, F(f, 1)), c = row(V, F(f, 2));
-        const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();
-        for (int q = 0; q < 3; ++q) N.row(F(f, q)) += n;
-    }
-    for (int i = 0; i < N.rows(); ++i) {
-        const double len = N.row(i).norm();
-        if (len > 0) N.row(i) /= len;
-    }
-    return N;
-}
-
 Eigen::SparseMatrix<double> mannequin_joint_regressor(const MannequinImplicit& body,
                                                       const Eigen::MatrixXd& V,
                                                       const Eigen::MatrixXi& F,

@@ -4,6 +4,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/vertex_normals.hpp>
 
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
@@ -40,20 +41,9 @@ void check_triangle_mesh(const char* fn, const Eigen::MatrixXd& V, const Eigen::
 
 /// Area-weighted vertex normals (unit; +Y for isolated vertices).
 Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-    Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-        const Eigen::RowVector3d n = (b - a).cross(c - a).transpose();  // 2 * area * unit normal
-        for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n;
-    }
-    for (Eigen::Index v = 0; v < N.rows(); ++v) {
-        const double len = N.row(v).norm();
-        if (len > 0)
-            N.row(v) /= len;
-        else
-            N.row(v) << 0, 1, 0;
-    }
-    return N;
+    core::VertexNormalOptions options;
+    options.isolated = Eigen::Vector3d::UnitY();
+    return core::vertex_normals(V, F, options);
 }
 
 aiMatrix4x4 to_ai(const Eigen::Isometry3d& T) {

@@ -1,9 +1,12 @@
 #include <drape/cloth/intersections.hpp>
 
+#include <drape/core/bvh.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/orientation.hpp>
+#include <drape/core/parallel_for.hpp>
+#include <drape/core/point_in_mesh.hpp>
 
 #include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -15,19 +18,13 @@ namespace drape::cloth {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-using Box = Eigen::AlignedBox3d;
-
-// Sign of the volume of (a, b, c, d): positive when d lies below the plane of a, b, c seen
-// with a, b, c counter-clockwise.
-double orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-    return (a - d).dot((b - d).cross(c - d));
-}
+using Box = core::Box3;
+using core::orient3d;
+using core::sign;
 
 double orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
-
-int sign(double x) { return (x > 0) - (x < 0); }
 
 // Closed 2D segment intersection.
 bool segments_intersect_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& q,
@@ -133,96 +130,11 @@ Box triangle_box(const Eigen::Matrix3d& t) {
     return b;
 }
 
-// A bounding-volume hierarchy over boxes: median split on the longest centroid axis.
-class Bvh {
-public:
-    explicit Bvh(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
-        order_.resize(boxes_.size());
-        for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<int>(i);
-        if (!boxes_.empty()) build(0, static_cast<int>(order_.size()));
-    }
-
-    /// Calls visit(id) for every leaf box for which overlaps(box) holds.
-    template <class Overlaps, class Visit>
-    void traverse(Overlaps&& overlaps, Visit&& visit) const {
-        if (nodes_.empty()) return;
-        int stack[128];
-        int top = 0;
-        stack[top++] = 0;
-        while (top > 0) {
-            const Node& node = nodes_[stack[--top]];
-            if (!overlaps(node.box)) continue;
-            if (node.left < 0) {
-                for (int i = node.begin; i < node.end; ++i)
-                    if (overlaps(boxes_[order_[i]])) visit(order_[i]);
-            } else {
-                stack[top++] = node.left;
-                stack[top++] = node.right;
-            }
-        }
-    }
-
-private:
-    struct Node {
-        Box box;
-        int left = -1, right = -1, begin = 0, end = 0;
-    };
-    static constexpr int kLeafSize = 4;
-
-    int build(int begin, int end) {
-        const int index = static_cast<int>(nodes_.size());
-        nodes_.emplace_back();
-        Box box, centroids;
-        for (int i = begin; i < end; ++i) {
-            box.extend(boxes_[order_[i]]);
-            centroids.extend(boxes_[order_[i]].center());
-        }
-        nodes_[index].box = box;
-        nodes_[index].begin = begin;
-        nodes_[index].end = end;
-        if (end - begin <= kLeafSize) return index;
-        int axis = 0;
-        centroids.sizes().maxCoeff(&axis);
-        const int mid = begin + (end - begin) / 2;
-        std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                         [&](int a, int b) {
-                             const double ca = boxes_[a].center()(axis),
-                                          cb = boxes_[b].center()(axis);
-                             return ca < cb || (ca == cb && a < b);
-                         });
-        const int left = build(begin, mid);
-        const int right = build(mid, end);
-        nodes_[index].left = left;
-        nodes_[index].right = right;
-        return index;
-    }
-
-    std::vector<Box> boxes_;
-    std::vector<int> order_;
-    std::vector<Node> nodes_;
-};
-
-Bvh triangle_bvh(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& faces) {
-    std::vector<Box> boxes(faces.rows());
-    for (int f = 0; f < faces.rows(); ++f) boxes[f] = triangle_box(corners(positions, faces, f));
-    return Bvh(std::move(boxes));
+core::Bvh triangle_bvh(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& faces) {
+    return core::Bvh(core::Bvh::triangle_boxes(positions, faces));
 }
 
 constexpr int kChunk = 256;
-
-// Runs body(i, out) for i in [0, n) on threads; the per-chunk outputs are concatenated in
-// index order, so the result does not depend on the schedule.
-template <class T, class Body>
-std::vector<T> parallel_collect(int n, Body&& body) {
-    const int chunks = (n + kChunk - 1) / kChunk;
-    std::vector<std::vector<T>> parts(chunks);
-    tbb::parallel_for(0, chunks, [&](int c) {
-        for (int i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) body(i, parts[c]);
-    });
-    std::vector<T> all;
-    for (auto& part : parts) all.insert(all.end(), part.begin(), part.end());
-    return all;
-}
 
 using Pairs = std::vector<std::pair<int, int>>;
 
@@ -231,96 +143,6 @@ int finish(Pairs found, Pairs* pairs) {
     const int count = static_cast<int>(found.size());
     if (pairs) *pairs = std::move(found);
     return count;
-}
-
-// ---- ray parity -------------------------------------------------------------------------
-
-enum class Crossing { none, crosses, ambiguous };
-
-struct Ray {
-    Vec3 p, q;  // the segment from the query point to beyond the mesh
-    Box box;
-};
-
-Ray make_ray(const Vec3& point, const Box& mesh_box, const Vec3& direction) {
-    const double length = 2 * (mesh_box.diagonal().norm() + (point - mesh_box.center()).norm()) + 1;
-    Ray ray{point, point + length * direction, Box(point)};
-    ray.box.extend(ray.q);
-    return ray;
-}
-
-// Canonical orientation of the ray against edge (i, j): evaluated with the smaller vertex
-// index first, so the two faces of an edge see exactly opposite signs.
-double edge_side(const Ray& ray, const Eigen::MatrixX3d& x, int i, int j) {
-    return i < j ? orient3d(ray.p, ray.q, x.row(i).transpose(), x.row(j).transpose())
-                 : -orient3d(ray.p, ray.q, x.row(j).transpose(), x.row(i).transpose());
-}
-
-Crossing ray_crossing(const Ray& ray, const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
-                      int f) {
-    const int a = faces(f, 0), b = faces(f, 1), c = faces(f, 2);
-    const int s1 = sign(edge_side(ray, x, a, b)), s2 = sign(edge_side(ray, x, b, c)),
-              s3 = sign(edge_side(ray, x, c, a));
-    const bool all_pos = s1 >= 0 && s2 >= 0 && s3 >= 0, all_neg = s1 <= 0 && s2 <= 0 && s3 <= 0;
-    if (!all_pos && !all_neg) return Crossing::none;
-    const Vec3 xa = x.row(a).transpose(), xb = x.row(b).transpose(), xc = x.row(c).transpose();
-    const int o1 = sign(orient3d(xa, xb, xc, ray.p)), o2 = sign(orient3d(xa, xb, xc, ray.q));
-    if (o1 * o2 > 0) return Crossing::none;
-    // Through an edge or vertex (a zero edge side), along the plane, or starting on it.
-    if (s1 == 0 || s2 == 0 || s3 == 0 || o1 == 0 || o2 == 0) return Crossing::ambiguous;
-    return Crossing::crosses;
-}
-
-// Irrational-looking directions so that a ray rarely meets an edge or vertex exactly.
-const Vec3 kDirections[] = {Vec3(0.5773502691896257, 0.5773502691896258, 0.5773502691896257)
-                                .cwiseProduct(Vec3(0.8314696123, 1.0, 1.2247448714))
-                                .normalized(),
-                            Vec3(-0.2672612419, 0.8017837257, -0.5345224838).normalized(),
-                            Vec3(0.7071067812, -0.3141592654, 0.6324555320).normalized(),
-                            Vec3(-0.9110886, -0.2718281828, 0.3090169944).normalized()};
-
-// Parity with retries; `candidates(ray, visit)` enumerates faces the ray may cross.
-template <class Candidates>
-bool inside_by_parity(const Vec3& point, const Box& mesh_box, const Eigen::MatrixX3d& x,
-                      const Eigen::MatrixX3i& faces, Candidates&& candidates) {
-    if (!mesh_box.contains(point)) return false;
-    for (const Vec3& direction : kDirections) {
-        const Ray ray = make_ray(point, mesh_box, direction);
-        int crossings = 0;
-        bool ambiguous = false;
-        candidates(ray, [&](int f) {
-            const Crossing c = ray_crossing(ray, x, faces, f);
-            if (c == Crossing::crosses) ++crossings;
-            if (c == Crossing::ambiguous) ambiguous = true;
-        });
-        if (!ambiguous) return crossings % 2 == 1;
-    }
-    return false;  // on the surface (every direction was ambiguous)
-}
-
-// Segment–box overlap by slabs.
-bool segment_overlaps_box(const Ray& ray, const Box& box) {
-    if (!ray.box.intersects(box)) return false;
-    double t0 = 0, t1 = 1;
-    const Vec3 d = ray.q - ray.p;
-    for (int a = 0; a < 3; ++a) {
-        if (d(a) == 0) {
-            if (ray.p(a) < box.min()(a) || ray.p(a) > box.max()(a)) return false;
-            continue;
-        }
-        double ta = (box.min()(a) - ray.p(a)) / d(a), tb = (box.max()(a) - ray.p(a)) / d(a);
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-        if (t0 > t1) return false;
-    }
-    return true;
-}
-
-Box mesh_box(const Eigen::MatrixX3d& positions) {
-    Box box;
-    for (int i = 0; i < positions.rows(); ++i) box.extend(positions.row(i).transpose());
-    return box;
 }
 
 }  // namespace
@@ -362,9 +184,9 @@ template <class Skip>
 Pairs intersecting_pairs(const Eigen::MatrixX3d& positions_a, const Eigen::MatrixX3i& faces_a,
                          const Eigen::MatrixX3d& positions_b, const Eigen::MatrixX3i& faces_b,
                          Skip&& skip) {
-    const Bvh bvh = triangle_bvh(positions_b, faces_b);
+    const core::Bvh bvh = triangle_bvh(positions_b, faces_b);
     const int nf = static_cast<int>(faces_a.rows());
-    return parallel_collect<std::pair<int, int>>(nf, [&](int f, Pairs& out) {
+    return core::parallel_collect<std::pair<int, int>>(nf, kChunk, [&](int f, Pairs& out) {
         const Eigen::Matrix3d t = corners(positions_a, faces_a, f);
         const Box box = triangle_box(t);
         bvh.traverse([&](const Box& b) { return b.intersects(box); },
@@ -404,13 +226,7 @@ int count_intersections(const Eigen::MatrixX3d& positions_a, const Eigen::Matrix
 
 bool point_inside_closed_mesh(const Eigen::Vector3d& point, const Eigen::MatrixX3d& positions,
                               const Eigen::MatrixX3i& faces) {
-    validate_mesh(positions, faces, "point_inside_closed_mesh");
-    require(point.allFinite(), "point_inside_closed_mesh: point is not finite");
-    const int nf = static_cast<int>(faces.rows());
-    return inside_by_parity(point, mesh_box(positions), positions, faces,
-                            [&](const Ray&, auto&& visit) {
-                                for (int f = 0; f < nf; ++f) visit(f);
-                            });
+    return core::point_inside_closed_mesh(point, positions, faces);
 }
 
 int count_points_inside_closed_mesh(const Eigen::MatrixX3d& points,
@@ -418,18 +234,7 @@ int count_points_inside_closed_mesh(const Eigen::MatrixX3d& points,
                                     const Eigen::MatrixX3i& faces, std::vector<int>* inside) {
     validate_mesh(positions, faces, "count_points_inside_closed_mesh");
     require(points.allFinite(), "count_points_inside_closed_mesh: points are not finite");
-    const Bvh bvh = triangle_bvh(positions, faces);
-    const Box box = mesh_box(positions);
-    std::vector<int> found = parallel_collect<int>(
-        static_cast<int>(points.rows()), [&](int i, std::vector<int>& out) {
-            const bool in = inside_by_parity(
-                points.row(i).transpose(), box, positions, faces,
-                [&](const Ray& ray, auto&& visit) {
-                    bvh.traverse([&](const Box& b) { return segment_overlaps_box(ray, b); },
-                                 visit);
-                });
-            if (in) out.push_back(i);
-        });
+    std::vector<int> found = core::ClosedMeshInside(positions, faces).inside_indices(points);
     const int count = static_cast<int>(found.size());
     if (inside) *inside = std::move(found);
     return count;

@@ -1,10 +1,14 @@
-// Private: cloth self-contact. Proximity pairs (vertex–triangle, edge–edge) found with a
-// uniform grid, exact unsigned distances per closest-feature regime, a penalty
-// energy with exact or PSD-projected derivatives, and a conservative step bound for the
-// line search. See docs/self-contact.md for the formulas and the guarantees.
+// Private: cloth self-contact. Proximity pairs (vertex–triangle, edge–edge) found with the
+// core BVH (contact_broad_phase.cpp), exact unsigned distances per closest-feature regime
+// (contact_distance.hpp), a penalty energy with exact or PSD-projected derivatives
+// (contact_barrier.hpp), and a conservative step bound for the line search (this class).
+// See docs/self-contact.md for the formulas and the guarantees.
 #pragma once
 
 #include <drape/cloth/energies.hpp>
+
+#include "contact_barrier.hpp"
+#include "contact_distance.hpp"
 
 #include <Eigen/Core>
 
@@ -15,84 +19,10 @@
 
 namespace drape::cloth::internal {
 
-/// A pair of primitives that may touch. vertex_triangle: v = {p, t0, t1, t2} with p not a
-/// corner of the triangle; edge_edge: v = {a0, a1, b0, b1} with no shared vertex.
-struct ContactPair {
-    enum class Kind { vertex_triangle, edge_edge };
-    Kind kind = Kind::vertex_triangle;
-    std::array<int, 4> v{};
-};
-
-/// Which closest-feature formula gives the squared distance of a pair. Indices are local
-/// (0..3, the columns of the pair's 3 x 4 coordinates).
-struct DistanceRegime {
-    enum class Type {
-        point_point,  ///< |x_i − x_j|²                                       (i = idx[0], j = idx[1])
-        point_edge,   ///< |(x_i − x_j) × (x_k − x_j)|² / |x_k − x_j|²          (i; edge j–k)
-        point_plane,  ///< ((x_0 − x_1)·n)² / |n|², n = (x_2 − x_1) × (x_3 − x_1)
-        edge_edge,    ///< ((x_2 − x_0)·c)² / |c|², c = (x_1 − x_0) × (x_3 − x_2)
-    };
-    Type type = Type::point_point;
-    std::array<int, 3> idx{};
-};
-
-/// Closest points and squared distance between point p and triangle (t0, t1, t2), handling
-/// degenerate (zero-area) triangles. Unsigned. \param regime if not null, receives the
-/// regime in the local numbering {p, t0, t1, t2} = {0, 1, 2, 3}.
 /// Per-vertex lengths of the displacements `d` (#V x 3) less one common translation T: T = 0
 /// or the mean of d, whichever gives the smaller maximum. A common translation brings no two
 /// points closer, so |d_a − T| + |d_b − T| bounds how much closer points a and b came.
 std::vector<double> translation_reduced_lengths(const Eigen::MatrixX3d& d);
-
-double point_triangle_distance_squared(const Eigen::Vector3d& p, const Eigen::Vector3d& t0,
-                                       const Eigen::Vector3d& t1, const Eigen::Vector3d& t2,
-                                       DistanceRegime* regime = nullptr);
-
-/// Squared distance between segments a0–a1 and b0–b1, robust to parallel and zero-length
-/// segments. \param regime local numbering {a0, a1, b0, b1} = {0, 1, 2, 3}.
-double segment_segment_distance_squared(const Eigen::Vector3d& a0, const Eigen::Vector3d& a1,
-                                        const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
-                                        DistanceRegime* regime = nullptr);
-
-/// Squared distance of a pair with coordinates x (3 x 4, columns in ContactPair::v order).
-double pair_distance_squared(ContactPair::Kind kind, const Eigen::Matrix<double, 3, 4>& x,
-                             DistanceRegime* regime = nullptr);
-
-/// The squared distance by a fixed regime's formula, with its gradient (12) and Hessian
-/// (12 x 12) with respect to x. Smooth within the regime; equals the true squared distance
-/// when the regime is the one the classifier returns.
-double regime_distance_squared(const DistanceRegime& regime,
-                               const Eigen::Matrix<double, 3, 4>& x, Vector12d* gradient,
-                               Matrix12d* hessian);
-
-/// Weights w of the closest points in a regime: r = Σ_c w_c x_c is the vector between the
-/// two closest points (one primitive's weights >= 0 summing to 1, the other's <= 0 summing
-/// to −1), so that ∇d = w ⊗ r/|r| (envelope theorem).
-Eigen::Vector4d regime_weights(const DistanceRegime& regime,
-                               const Eigen::Matrix<double, 3, 4>& x);
-
-/// Penalty parameters.
-struct SelfContactParams {
-    double thickness_m = 0.005;          ///< h: pairs closer than h repel
-    double stiffness_n_per_m = 1000.0;   ///< k in ψ(d) = ½ k (h − d)² for d < h
-    bool is_valid(std::string* why) const;
-};
-
-/// Penalty energy of one pair, ψ(d) = ½ k (h − d)² for d < h, 0 otherwise (joules).
-/// \param gradient 12 (columns of x, xyz each); \param hessian 12 x 12 (HessianMode:
-/// exact, projected_psd, or gauss_newton = k ∇d ∇dᵀ). Zero derivatives when d >= h.
-/// \pre d > 0 (the penalty is not differentiable through d = 0; the step bound keeps pairs
-/// apart).
-double pair_energy(ContactPair::Kind kind, const Eigen::Matrix<double, 3, 4>& x,
-                   const SelfContactParams& params, Vector12d* gradient = nullptr,
-                   Matrix12d* hessian = nullptr,
-                   HessianMode mode = HessianMode::projected_psd);
-
-/// One pair's Hessian block for assembly: rows/cols 3 v[c] + i ↔ 3 c + i.
-struct PairHessian {
-    ContactPair pair;
-    Matrix12d hessian;
-};
 
 /// The frame of a pair in contact, for lagged friction: relative displacement of the two
 /// closest points = Σ_c weights_c Δx_{v[c]}; unit normal from the second primitive's closest
@@ -163,7 +93,7 @@ public:
     /// or edge to edge). Such pairs are neighbours within one layer, not two layers, and a
     /// repulsion between them would fight the elastic forces of a fine mesh.
     /// \param vertex_pattern #V x 2 pattern coordinates (m); \param piece #V piece ids.
-    /// 	hrow drape::InvalidInput on a size mismatch or a negative distance.
+    /// \throw drape::InvalidInput on a size mismatch or a negative distance.
     void set_rest_filter(const Eigen::MatrixX2d& vertex_pattern, const std::vector<int>& piece,
                          double min_distance_m);
     /// The same for a mesh whose vertices may have several pattern points (a welded seam

@@ -1,7 +1,7 @@
 // The anchor scene of issue 3 (1 m square dropped on a 0.5 m sphere) against ArcSim 0.3.1's
 // measured rest state, and contact behaviour on smaller versions of it.
 #include <drape/cloth/intersections.hpp>
-#include <drape/cloth/scenes.hpp>
+#include <drape/fixtures/cloth_scenes.hpp>
 #include <drape/cloth/simulator.hpp>
 
 #include <catch2/catch.hpp>

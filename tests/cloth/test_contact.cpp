@@ -5,7 +5,7 @@
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/local_curvature.hpp>
 #include <drape/cloth/obstacle.hpp>
-#include <drape/cloth/scenes.hpp>
+#include <drape/fixtures/cloth_scenes.hpp>
 #include <drape/cloth/simulator.hpp>
 #include <drape/core/errors.hpp>
 
@@ -13,6 +13,8 @@
 #include <catch2/catch.hpp>
 
 #include "gray_interlock_fixture.hpp"
+#include "two_pieces_fixture.hpp"
+#include <common/finite_differences.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -25,18 +27,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Central differences of a scalar function of a vector.
-template <int N, typename F>
-Eigen::Matrix<double, N, 1> fd_gradient(F&& f, const Eigen::Matrix<double, N, 1>& x, double h) {
-    Eigen::Matrix<double, N, 1> g;
-    for (int i = 0; i < N; ++i) {
-        Eigen::Matrix<double, N, 1> a = x, b = x;
-        a(i) += h;
-        b(i) -= h;
-        g(i) = (f(a) - f(b)) / (2 * h);
-    }
-    return g;
-}
+using drape::test::fd_gradient;
 
 // Closest point on a triangle soup by brute force (dense sampling is not needed: we test the
 // BVH traversal, so the reference uses the same exact point-triangle routine via 1-face
@@ -66,7 +57,7 @@ TEST_CASE("plane contact energy: finite differences and the thickness", "[cloth]
         Eigen::Matrix3d H;
         plane_contact_energy(x, c, n, h, k, &g, &H);
         auto e = [&](const Eigen::Vector3d& y) { return plane_contact_energy(y, c, n, h, k); };
-        CHECK((fd_gradient<3>(e, x, 1e-7) - g).norm() <= 1e-6 * (1 + g.norm()));
+        CHECK((fd_gradient(e, x, 1e-7) - g).norm() <= 1e-6 * (1 + g.norm()));
         Eigen::Matrix3d Hfd;
         for (int i = 0; i < 3; ++i) {
             auto gi = [&](const Eigen::Vector3d& y) {
@@ -100,7 +91,7 @@ TEST_CASE("plane contact energy: beta times as stiff behind the surface, C1 at t
         Eigen::Matrix3d H;
         plane_contact_energy(x, c, n, h, k, &g, &H, beta);
         auto e = [&](const Eigen::Vector3d& y) { return plane_contact_energy(y, c, n, h, k, nullptr, nullptr, beta); };
-        CHECK((fd_gradient<3>(e, x, 1e-8) - g).norm() <= 1e-6 * (1 + g.norm()));
+        CHECK((fd_gradient(e, x, 1e-8) - g).norm() <= 1e-6 * (1 + g.norm()));
         // The force: k (h - d) in the layer, k (h - d) + (beta - 1) k |d| behind the surface.
         const double expected = k * (h - d) + (d < 0 ? (beta - 1) * k * -d : 0.0);
         CHECK(-g.dot(n) == Approx(expected).epsilon(1e-9));
@@ -134,7 +125,7 @@ TEST_CASE("friction energy: finite differences in the static and sliding regimes
             friction_energy(d, n, lambda, mu, eps, &g, &H);
             auto e = [&](const Eigen::Vector3d& y) { return friction_energy(y, n, lambda, mu, eps); };
             const double step = 1e-3 * scale;
-            CHECK((fd_gradient<3>(e, d, step) - g).norm() <= 1e-5 * mu * lambda);
+            CHECK((fd_gradient(e, d, step) - g).norm() <= 1e-5 * mu * lambda);
             Eigen::Matrix3d Hfd;
             for (int i = 0; i < 3; ++i) {
                 Eigen::Vector3d a = d, b = d, ga, gb;
@@ -167,7 +158,7 @@ TEST_CASE("stitch energy: finite differences with and without rest length", "[cl
             Vector6d g;
             Matrix6d H;
             stitch_energy(x.head<3>(), x.tail<3>(), rest, 500.0, &g, &H, HessianMode::exact);
-            CHECK((fd_gradient<6>(e, x, 1e-7) - g).norm() <= 1e-6 * (1 + g.norm()));
+            CHECK((fd_gradient(e, x, 1e-7) - g).norm() <= 1e-6 * (1 + g.norm()));
             Matrix6d Hfd;
             for (int i = 0; i < 6; ++i) {
                 Vector6d a = x, b = x, ga, gb;
@@ -320,21 +311,7 @@ TEST_CASE("buckling steps end after max_nonconvex_step_iterations regularised it
 
 namespace {
 
-// Two cloth pieces in one mesh: b's vertices follow a's, and b's pattern is laid 0.1 m to
-// the right of a's so the pieces do not overlap in the pattern plane.
-ClothMesh two_pieces(const ClothMesh& a, const ClothMesh& b) {
-    const int na = a.vertex_count(), nb = b.vertex_count();
-    ClothMesh m;
-    m.positions.resize(na + nb, 3);
-    m.positions << a.positions, b.positions;
-    m.faces.resize(a.face_count() + b.face_count(), 3);
-    m.faces << a.faces, (b.faces.array() + na).matrix();
-    const double shift = a.pattern.col(0).maxCoeff() + 0.1 - b.pattern.col(0).minCoeff();
-    m.pattern.resize(na + nb, 2);
-    m.pattern << a.pattern, (b.pattern.rowwise() + Eigen::RowVector2d(shift, 0)).eval();
-    m.pattern_faces = m.faces;
-    return m;
-}
+using test::two_pieces;
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "gray_interlock_fixture.hpp"
+#include <common/finite_differences.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -24,34 +25,9 @@ using Vec = Eigen::Matrix<double, N, 1>;
 template <int N>
 using Mat = Eigen::Matrix<double, N, N>;
 
-// Central differences of a scalar function and of its gradient.
-template <int N>
-Vec<N> fd_gradient(const std::function<double(const Vec<N>&)>& f, const Vec<N>& x, double h) {
-    Vec<N> g;
-    for (int i = 0; i < N; ++i) {
-        Vec<N> a = x, b = x;
-        a(i) += h;
-        b(i) -= h;
-        g(i) = (f(a) - f(b)) / (2 * h);
-    }
-    return g;
-}
-
-template <int N>
-Mat<N> fd_hessian(const std::function<Vec<N>(const Vec<N>&)>& grad, const Vec<N>& x, double h) {
-    Mat<N> m;
-    for (int i = 0; i < N; ++i) {
-        Vec<N> a = x, b = x;
-        a(i) += h;
-        b(i) -= h;
-        m.col(i) = (grad(a) - grad(b)) / (2 * h);
-    }
-    return m;
-}
-
-double relative_error(const Eigen::MatrixXd& fd, const Eigen::MatrixXd& analytic) {
-    return (fd - analytic).norm() / std::max(analytic.norm(), 1e-300);
-}
+using drape::test::fd_gradient;
+using drape::test::fd_hessian;
+using drape::test::relative_error;
 
 Eigen::Matrix3d to_cols(const Vec<9>& v) { return Eigen::Map<const Eigen::Matrix3d>(v.data()); }
 Eigen::Matrix<double, 3, 4> to_cols(const Vec<12>& v) {
@@ -102,8 +78,8 @@ TEST_CASE("stretching energy: finite-difference gradient and Hessian", "[cloth][
         Mat<9> h;
         const double e = stretching_energy(to_cols(t.x), t.rest, t.k, &g, &h, HessianMode::exact);
         CHECK(e == Approx(energy(t.x)));
-        worst_g = std::max(worst_g, relative_error(fd_gradient<9>(energy, t.x, 1e-7), g));
-        worst_h = std::max(worst_h, relative_error(fd_hessian<9>(gradient, t.x, 1e-7), h));
+        worst_g = std::max(worst_g, relative_error(fd_gradient(energy, t.x, 1e-7), g));
+        worst_h = std::max(worst_h, relative_error(fd_hessian(gradient, t.x, 1e-7), h));
         // Projected: PSD, and equal to the exact one when that is already PSD.
         Mat<9> hp;
         stretching_energy(to_cols(t.x), t.rest, t.k, nullptr, &hp, HessianMode::projected_psd);
@@ -216,8 +192,8 @@ TEST_CASE("bending energy: finite-difference gradient and Hessian", "[cloth][ene
         const double e = bending_energy(to_cols(xv), rest, k, &g, &h, HessianMode::exact);
         CHECK(e == Approx(energy(xv)));
         const double step = 1e-6 * l;
-        worst_g = std::max(worst_g, relative_error(fd_gradient<12>(energy, xv, step), g));
-        worst_h = std::max(worst_h, relative_error(fd_hessian<12>(gradient, xv, step), h));
+        worst_g = std::max(worst_g, relative_error(fd_gradient(energy, xv, step), g));
+        worst_h = std::max(worst_h, relative_error(fd_hessian(gradient, xv, step), h));
         Mat<12> hgn;
         bending_energy(to_cols(xv), rest, k, nullptr, &hgn, HessianMode::gauss_newton);
         const double c = k * rest.rest_length_m * rest.rest_length_m / (8 * rest.rest_area_sum_m2);
@@ -315,8 +291,8 @@ TEST_CASE("curvature-dependent bending: finite differences and ArcSim's force",
         Vec<12> g;
         Mat<12> h;
         bending_energy(to_cols(xv), rest, curve, &g, &h, HessianMode::exact);
-        worst_g = std::max(worst_g, relative_error(fd_gradient<12>(energy, xv, 1e-7 * l), g));
-        worst_h = std::max(worst_h, relative_error(fd_hessian<12>(gradient, xv, 1e-7 * l), h));
+        worst_g = std::max(worst_g, relative_error(fd_gradient(energy, xv, 1e-7 * l), g));
+        worst_h = std::max(worst_h, relative_error(fd_hessian(gradient, xv, 1e-7 * l), h));
         // The force is ArcSim's: k(κ) l̄²/(4(A0+A1)) θ ∇θ with k = min over the two sides.
         const double k = std::min(bending_stiffness(m, rest.direction_rad[0], kappa),
                                   bending_stiffness(m, rest.direction_rad[1], kappa));

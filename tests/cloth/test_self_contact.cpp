@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "folded_sheet_fixture.hpp"
+#include <common/finite_differences.hpp>
 
 #include <Eigen/Eigenvalues>
 
@@ -30,9 +31,7 @@ using Kind = ContactPair::Kind;
 Mat34 to_cols(const Vector12d& v) { return Eigen::Map<const Mat34>(v.data()); }
 Vector12d to_vec(const Mat34& x) { return Eigen::Map<const Vector12d>(x.data()); }
 
-double relative_error(const Eigen::MatrixXd& fd, const Eigen::MatrixXd& analytic) {
-    return (fd - analytic).norm() / std::max(analytic.norm(), 1e-300);
-}
+using drape::test::relative_error;
 
 // Brute-force distances by dense sampling of the parameter domains.
 double sampled_point_triangle(const Mat34& x, int n) {
@@ -84,19 +83,15 @@ void check_pair_derivatives(Kind kind, const Mat34& x, const SelfContactParams& 
     pair_energy(kind, x, params, &g, &hess, HessianMode::exact);
     const Vector12d x0 = to_vec(x);
     const double step = 1e-8;
-    Vector12d g_fd;
-    Matrix12d h_fd;
-    for (int i = 0; i < 12; ++i) {
-        Vector12d a = x0, b = x0;
-        a(i) += step;
-        b(i) -= step;
-        g_fd(i) = (pair_energy(kind, to_cols(a), params) - pair_energy(kind, to_cols(b), params)) /
-                  (2 * step);
-        Vector12d ga, gb;
-        pair_energy(kind, to_cols(a), params, &ga);
-        pair_energy(kind, to_cols(b), params, &gb);
-        h_fd.col(i) = (ga - gb) / (2 * step);
-    }
+    const Vector12d g_fd = drape::test::fd_gradient(
+        [&](const Vector12d& y) { return pair_energy(kind, to_cols(y), params); }, x0, step);
+    const Matrix12d h_fd = drape::test::fd_hessian(
+        [&](const Vector12d& y) {
+            Vector12d gy;
+            pair_energy(kind, to_cols(y), params, &gy);
+            return gy;
+        },
+        x0, step);
     INFO("gradient " << g.transpose() << "\nfd " << g_fd.transpose());
     CHECK(relative_error(g_fd, g) < 1e-5);
     CHECK(relative_error(h_fd, hess) < 1e-4);

@@ -1,5 +1,5 @@
 #include <drape/cloth/obstacle.hpp>
-#include <drape/cloth/scenes.hpp>
+#include <drape/fixtures/cloth_scenes.hpp>
 #include <drape/cloth/simulator.hpp>
 #include <drape/core/errors.hpp>
 

@@ -11,7 +11,7 @@
 #include <drape/core/errors.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/dressing.hpp>
-#include <drape/garment/eval_bodies.hpp>
+#include <drape/fixtures/eval_bodies.hpp>
 #include <drape/garment/mesh_inside.hpp>
 #include <drape/garment/pants.hpp>
 #include <drape/garment/sizing_proposal.hpp>

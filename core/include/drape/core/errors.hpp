@@ -1,4 +1,4 @@
-// Drape's small exception tree, shared by every library (header-only drape::core).
+// Drape's small exception tree, shared by every library (drape::core).
 //
 // Broken preconditions throw InvalidInput with a message naming the argument and the
 // value; failed reads and writes throw IoError naming the file. Expected numerical

@@ -167,6 +167,10 @@ struct Stitch {
     double length_m = 0;  ///< seam length this stitch stands for (for its stiffness), > 0
 };
 
+namespace internal {
+class PotentialProbe;  // a test hook in libcloth/src (not part of the API)
+}
+
 /// A piece of cloth in time. Owns its state; distinct simulators may run on distinct threads.
 class Simulator {
 public:
@@ -200,7 +204,7 @@ public:
     void set_obstacle(Obstacle obstacle);
     /// Moves the obstacle's vertices (same faces) before the next step, e.g. to animate the
     /// body; cloth left inside is pushed out by the contact penalty.
-    /// 	hrow drape::InvalidInput if there is no obstacle or the shape differs.
+    /// \throw drape::InvalidInput if there is no obstacle or the shape differs.
     void move_obstacle(const Eigen::MatrixX3d& positions_m);
     void clear_obstacle();
     const Obstacle* obstacle() const;  ///< null when none
@@ -208,7 +212,7 @@ public:
     /// Sets the seam stitches (replacing previous ones). Open stitches close at
     /// options.seam_closing_speed_m_per_s during steps; solve_static() holds them at zero.
     /// Cloth–cloth contact between a stitch's two sides is ignored.
-    /// 	hrow drape::InvalidInput if an index is out of range, a == b or length <= 0.
+    /// \throw drape::InvalidInput if an index is out of range, a == b or length <= 0.
     void set_stitches(const std::vector<Stitch>& stitches);
     const std::vector<Stitch>& stitches() const;
 
@@ -242,6 +246,7 @@ public:
     Eigen::MatrixX3d forces() const;
 
 private:
+    friend class internal::PotentialProbe;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -1,0 +1,144 @@
+// Contact and friction state of a step: closest body points and contact planes, the
+// friction lagged over a step, the rest filter of self-contact and the step bounds.
+#include "simulator_impl.hpp"
+
+#include <drape/core/parallel_for.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::cloth {
+
+namespace {
+
+// A vertex's second contact plane of a step is made only for a surface facing the first
+// one: normals more than 90 degrees apart (a pinch), not a neighbouring patch of one surface.
+constexpr double kFacingPlanesCos = 0.0;
+// How far a vertex that was near the obstacle at the previous contact update is searched
+// for when it is no longer within the query radius (update_obstacle_contacts): deeper than
+// the half-thickness of most body parts, so a vertex pushed that far in is still found.
+constexpr double kLostContactRadius = 0.15;
+
+}  // namespace
+
+void Simulator::Impl::update_obstacle_contacts(const Eigen::MatrixX3d& p) {
+    if (!obstacle) {
+        contacts.clear();
+        return;
+    }
+    const double h = options.contact_thickness_m;
+    query_radius = h + std::max(2 * h, 0.01);
+    // Each vertex's entry still holds its previous distance until it is overwritten.
+    const bool known = contacts.size() == static_cast<std::size_t>(p.rows());
+    if (!known) contacts.assign(static_cast<std::size_t>(p.rows()), VertexContact{});
+    core::parallel_for(static_cast<int>(p.rows()), [&](int i) {
+        VertexContact& c = contacts[static_cast<std::size_t>(i)];
+        const double previous = known ? c.distance : -std::numeric_limits<double>::infinity();
+        c = VertexContact{};
+        c.vertex = i;
+        if (pinned[static_cast<std::size_t>(i)]) return;
+        ObstacleQuery q = obstacle->closest(p.row(i).transpose(), query_radius);
+        if (!q.found && previous < query_radius)
+            q = obstacle->closest(p.row(i).transpose(), kLostContactRadius);
+        if (!q.found) return;
+        c.point = q.point;
+        c.normal = q.normal;
+        c.distance = q.signed_distance_m;
+        // Contact plane: through the closest point, along the direction to the vertex
+        // when it is well defined (so the plane is the true distance's tangent plane).
+        const Eigen::Vector3d d = p.row(i).transpose() - q.point;
+        if (d.norm() > 1e-9) c.normal = (q.signed_distance_m < 0 ? -d : d).normalized();
+        c.stiffness = options.contact_stiffness_n_per_m3 * area(i);
+    }, 64);
+    {
+        plane_of_vertex.resize(static_cast<std::size_t>(p.rows()), {-1, -1});
+        for (const VertexContact& c : contacts) {
+            if (c.vertex < 0 || c.stiffness <= 0 || c.distance >= h) continue;
+            std::array<int, 2>& own = plane_of_vertex[static_cast<std::size_t>(c.vertex)];
+            const bool add = own[0] < 0 ||
+                             (own[1] < 0 && planes[static_cast<std::size_t>(own[0])].second.dot(c.normal) <
+                                                kFacingPlanesCos);
+            if (!add) continue;
+            own[own[0] < 0 ? 0 : 1] = static_cast<int>(planes.size());
+            planes.emplace_back(c.point, c.normal);
+        }
+    }
+}
+
+void Simulator::Impl::lag_friction() {
+    friction.clear();
+    if (!friction_active() || !obstacle || options.obstacle_friction <= 0) return;
+    const double h = options.contact_thickness_m;
+    for (const VertexContact& c : contacts)
+        if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h)
+            friction.push_back({c.vertex, c.normal, c.stiffness * (h - std::max(c.distance, 0.0))});
+}
+
+void Simulator::Impl::drop_released_friction() {
+    if (friction.empty() || contacts.empty()) return;
+    const double h = options.contact_thickness_m;
+    std::size_t w = 0;
+    for (std::size_t k = 0; k < friction.size(); ++k) {
+        const VertexContact& c = contacts[static_cast<std::size_t>(friction[k].vertex)];
+        if (c.stiffness > 0 && c.distance < h) friction[w++] = friction[k];
+    }
+    friction.resize(w);
+}
+
+double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& dx) const {
+    if (contacts.empty()) return 1.0;
+    const double allowed_depth_m = options.contact_thickness_m;
+    double alpha = 1.0;
+    for (const VertexContact& c : contacts) {
+        if (c.vertex < 0 || pinned[static_cast<std::size_t>(c.vertex)]) continue;
+        const double move = dx.row(c.vertex).norm();
+        if (move <= 0) continue;
+        const double free_distance = std::isfinite(c.distance) ? c.distance : query_radius;
+        if (free_distance <= 0) continue;
+        alpha = std::min(alpha, (0.9 * free_distance + allowed_depth_m) / move);
+    }
+    return alpha;
+}
+
+void Simulator::Impl::lag_pair_friction(const Eigen::MatrixX3d& p) {
+    pair_friction.clear();
+    if (!friction_active() || !options.self_contact || options.cloth_friction <= 0) return;
+    const double h = options.contact_thickness_m, k = self_contact_stiffness();
+    for (const internal::PairFrame& f : self_contact.contact_frames(p, h))
+        pair_friction.push_back({f, k * (h - f.distance_m)});
+}
+
+double Simulator::Impl::friction_epsilon() const {
+    return options.friction_slip_speed_m_per_s * (step_dt > 0 ? step_dt : options.static_damping_time_s);
+}
+
+double Simulator::Impl::self_contact_stiffness() const {
+    return options.contact_stiffness_n_per_m3 * (area.size() ? area.mean() : 0.0);
+}
+
+void Simulator::Impl::set_rest_filter() {
+    const int np = static_cast<int>(mesh.pattern.rows());
+    std::vector<int> point_vertex(static_cast<std::size_t>(np), -1);
+    DisjointSets pieces(np);
+    for (int f = 0; f < mesh.face_count(); ++f)
+        for (int c = 0; c < 3; ++c) {
+            point_vertex[static_cast<std::size_t>(mesh.pattern_faces(f, c))] = mesh.faces(f, c);
+            pieces.join(mesh.pattern_faces(f, c), mesh.pattern_faces(f, (c + 1) % 3));
+        }
+    // Points no face uses take vertex 0 on a piece of their own (never near anything).
+    std::vector<int> piece(static_cast<std::size_t>(np));
+    for (int i = 0; i < np; ++i) {
+        piece[static_cast<std::size_t>(i)] = pieces.find(i);
+        if (point_vertex[static_cast<std::size_t>(i)] < 0) point_vertex[static_cast<std::size_t>(i)] = 0;
+    }
+    self_contact.set_rest_filter(mesh.pattern, point_vertex, mesh.pattern_faces, piece,
+                                 2 * options.contact_thickness_m);
+}
+
+double Simulator::Impl::max_stitch_gap(const Eigen::MatrixX3d& p) const {
+    double gap = 0;
+    for (const Stitch& st : stitches) gap = std::max(gap, (p.row(st.a) - p.row(st.b)).norm());
+    return gap;
+}
+
+}  // namespace drape::cloth
