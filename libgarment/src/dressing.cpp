@@ -5,6 +5,9 @@
 
 #include "dressing_internal.hpp"
 
+#include <drape/core/closest_point_triangle.hpp>
+#include <drape/core/vertex_normals.hpp>
+
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
@@ -41,17 +44,6 @@ int nearest_vertex(const Eigen::MatrixXd& V, const Eigen::Vector3d& p) {
         if (e < d) d = e, best = int(i);
     }
     return best;
-}
-
-Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-    Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-        const Eigen::Vector3d n = (b - a).cross(c - a);  // area-weighted, outward (CCW outside)
-        for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
-    }
-    for (Eigen::Index i = 0; i < N.rows(); ++i) N.row(i).normalize();
-    return N;
 }
 
 // As-rigid-as-possible deformation (uniform weights) from rest shape X0 towards soft
@@ -398,28 +390,6 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
 
 namespace detail {
 
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c) {
-    // Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions of the triangle).
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Eigen::Vector3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-    const Eigen::Vector3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::array<int, 2>>& stitches) {
     std::vector<int> parent(static_cast<size_t>(vertex_count));
     for (int i = 0; i < vertex_count; ++i) parent[size_t(i)] = i;
@@ -486,15 +456,15 @@ std::vector<LayerPair> layer_pairs(const GarmentMesh& mesh, const Eigen::MatrixX
             for (int k = 0; k < 3; ++k) skip = skip || rep[size_t(F(f, k))] == rep[size_t(v)];
             if (skip) continue;
             const Eigen::Vector3d p = X.row(v).transpose();
-            const Eigen::Vector3d q = closest_on_triangle(p, X.row(F(f, 0)).transpose(), X.row(F(f, 1)).transpose(),
-                                                          X.row(F(f, 2)).transpose());
+            const Eigen::Vector3d q = core::closest_point_on_triangle(
+                p, X.row(F(f, 0)).transpose(), X.row(F(f, 1)).transpose(), X.row(F(f, 2)).transpose());
             const double d = (p - q).norm();
             if (d >= radius_m) continue;
             if (mesh.panel_of_vertex(F(f, 0)) == pv && mesh.panel_of_vertex(F(f, 1)) == pv &&
                 mesh.panel_of_vertex(F(f, 2)) == pv) {
                 const auto lift = [&](int i) { return Eigen::Vector3d(P(i, 0), P(i, 1), 0.0); };
-                const double rest = (lift(int(v)) - closest_on_triangle(lift(int(v)), lift(F(f, 0)), lift(F(f, 1)),
-                                                                         lift(F(f, 2))))
+                const double rest = (lift(int(v)) - core::closest_point_on_triangle(lift(int(v)), lift(F(f, 0)),
+                                                                                    lift(F(f, 1)), lift(F(f, 2))))
                                         .norm();
                 if (rest < rest_radius_m) continue;
             }
@@ -753,7 +723,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     // 3. Radial placement outside the posed body (see place_outside_body), then the
     //    sleeves on the posed arms around the placed torso.
     const Eigen::MatrixXd body_v = body::pose_body(model, shaped, pose).vertices;
-    const Eigen::MatrixXd body_n = vertex_normals(body_v, model.faces);
+    const Eigen::MatrixXd body_n = core::vertex_normals(body_v, model.faces);  // area-weighted
     {
         Eigen::MatrixX3d placed = X;
         place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, options.clearance_m, placed);

@@ -85,10 +85,6 @@ private:
 /// must stay positive keeps its order.
 double soft_floor(double d, double soft);
 
-/// Closest point to p on the triangle (a, b, c).
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c);
-
 /// Per vertex, one representative of its stitched group (vertices sewn together, transitively).
 std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::array<int, 2>>& stitches);
 
