@@ -1,11 +1,11 @@
 // Initial garment registration: rigid alignment, skinning and interpenetration removal.
 #include <drape/garment/dressing.hpp>
-#include <drape/garment/mesh_inside.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 
 #include "dressing_internal.hpp"
 
 #include <drape/core/closest_point_triangle.hpp>
+#include <drape/core/point_in_mesh.hpp>
 #include <drape/core/vertex_normals.hpp>
 
 #include <drape/cloth/intersections.hpp>
@@ -744,7 +744,13 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
 
     // 4. Interpenetration removal: push offending vertices out along the body normal and
     //    let an as-rigid-as-possible deformation carry their neighbours.
-    const MeshInsideTest inside_test(body_v, model.faces);
+    const core::ClosedMeshInside inside_test(body_v, model.faces);
+    // Per row of `P`: inside the posed body.
+    const auto inside_rows = [&](const Eigen::MatrixX3d& P) {
+        std::vector<bool> in(size_t(P.rows()), false);
+        for (int i : inside_test.inside_indices(P)) in[size_t(i)] = true;
+        return in;
+    };
     // Stitched vertex pairs join the ARAP graph, so seams that wrapping closed stay closed.
     // Stitch springs (rest length zero, stiffer than cloth edges: kStitchWeight) pull seams
     // that wrapping or skinning opened towards closing while the garment is pushed out.
@@ -768,7 +774,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     std::vector<bool> ever(size_t(nv), false), march(size_t(nv), false);
     auto offenders = [&](std::vector<int>* ids, Eigen::MatrixX3d* targets) {
         std::vector<std::pair<int, Eigen::Vector3d>> list;
-        const std::vector<bool> in = inside_test.inside(X);
+        const std::vector<bool> in = inside_rows(X);
         for (int v = 0; v < nv; ++v) {
             const Eigen::Vector3d x = X.row(v).transpose();
             const int b = nearest_vertex(body_v, x);
@@ -836,7 +842,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         }
     }
     summary.vertices_pushed = int(std::count(ever.begin(), ever.end(), true));
-    const std::vector<bool> in = inside_test.inside(X);
+    const std::vector<bool> in = inside_rows(X);
     summary.vertices_inside = int(std::count(in.begin(), in.end(), true));
     for (const auto& s : mesh.stitches)
         summary.max_seam_gap_m = std::max(summary.max_seam_gap_m, (X.row(s[0]) - X.row(s[1])).norm());
