@@ -19,8 +19,8 @@
 #include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/fixtures/eval_bodies.hpp>
-#include <drape/garment/garment_export.hpp>
 #include <drape/garment/dress_outfit.hpp>
+#include <drape/garment/garment_export.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/pattern_dxf.hpp>

@@ -59,6 +59,7 @@ Pattern make_circle_skirt(const SkirtSizing& g) {
     pattern.panels = {front, back};
     PanelPlacement pf, pb;
     pf.body_part = BodyPart::front_torso;
+    pf.role = pb.role = PanelRole::skirt;
     pf.translation_cm = Eigen::Vector3d(0, kNominalWaistHeightCm, kNominalTorsoHalfDepthCm);
     pb.body_part = BodyPart::back_torso;
     pb.translation_cm = Eigen::Vector3d(0, kNominalWaistHeightCm, -kNominalTorsoHalfDepthCm);

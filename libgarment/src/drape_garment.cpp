@@ -447,8 +447,7 @@ std::vector<int> waistband_faces(const Pattern& pattern, const GarmentMesh& mesh
     std::vector<std::vector<Eigen::Vector2d>> waist(pattern.panels.size());
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
-        const detail::Role role = detail::role_of(pattern, panel.name);
-        if (!(role == detail::Role::skirt && pattern.name == "circle_skirt")) continue;
+        if (!(detail::role_of(pattern, p) == detail::Role::skirt && detail::is_skirt(pattern))) continue;
         const int best = detail::waist_edge(pattern, p);
         if (best < 0) continue;
         const Edge& edge = panel.edges[size_t(best)];
@@ -630,8 +629,7 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
             // garment spanning the inner one's top edge must be pushed out at all its corners.
             inner.finish(4);
             for (Eigen::Index v = 0; v < dressed[g].rows(); ++v) {
-                const std::string& panel = patterns[g].panels[size_t(meshes[g].panel_of_vertex(v))].name;
-                if (detail::role_of(patterns[g], panel) == detail::Role::sleeve) continue;
+                if (detail::role_of(patterns[g], size_t(meshes[g].panel_of_vertex(v))) == detail::Role::sleeve) continue;
                 dressed[g].row(v) = inner.push(dressed[g].row(v).transpose(), gap, 0.01).transpose();
             }
         }

@@ -1,9 +1,12 @@
 // Initial garment registration: rigid alignment, skinning and interpenetration removal.
 #include <drape/garment/dressing.hpp>
-#include <drape/garment/mesh_inside.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 
 #include "dressing_internal.hpp"
+
+#include <drape/core/closest_point_triangle.hpp>
+#include <drape/core/point_in_mesh.hpp>
+#include <drape/core/vertex_normals.hpp>
 
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
@@ -41,17 +44,6 @@ int nearest_vertex(const Eigen::MatrixXd& V, const Eigen::Vector3d& p) {
         if (e < d) d = e, best = int(i);
     }
     return best;
-}
-
-Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-    Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-        const Eigen::Vector3d n = (b - a).cross(c - a);  // area-weighted, outward (CCW outside)
-        for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
-    }
-    for (Eigen::Index i = 0; i < N.rows(); ++i) N.row(i).normalize();
-    return N;
 }
 
 // As-rigid-as-possible deformation (uniform weights) from rest shape X0 towards soft
@@ -250,7 +242,7 @@ void open_armholes(const Pattern& pattern, const GarmentMesh& mesh, const body::
                    const detail::AxisEnvelope arms[2], double clearance, Eigen::MatrixX3d& X) {
     const int nv = int(X.rows());
     const auto panel_v = [&](int v) { return size_t(mesh.panel_of_vertex(v)); };
-    const auto role_v = [&](int v) { return detail::role_of(pattern, pattern.panels[panel_v(v)].name); };
+    const auto role_v = [&](int v) { return detail::role_of(pattern, panel_v(v)); };
     // Armhole vertices: torso vertex -> arm (0 left, 1 right).
     std::vector<int> arm_of(size_t(nv), -1);
     for (const auto& st : mesh.stitches)
@@ -311,7 +303,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
     const auto J = [&](Joint j) -> Eigen::Vector3d { return skel.joints.row(index(j)).transpose(); };
     const int nv = int(X.rows());
     std::vector<detail::Role> role(pattern.panels.size());
-    for (size_t p = 0; p < pattern.panels.size(); ++p) role[p] = detail::role_of(pattern, pattern.panels[p].name);
+    for (size_t p = 0; p < pattern.panels.size(); ++p) role[p] = detail::role_of(pattern, p);
     const auto role_v = [&](int v) { return role[size_t(mesh.panel_of_vertex(v))]; };
     const auto left_v = [&](int v) {
         const BodyPart part = pattern.placements[size_t(mesh.panel_of_vertex(v))].body_part;
@@ -398,28 +390,6 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
 
 namespace detail {
 
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c) {
-    // Ericson, Real-Time Collision Detection, 5.1.5 (Voronoi regions of the triangle).
-    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return a;
-    const Eigen::Vector3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-    const Eigen::Vector3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-    const double denom = 1.0 / (va + vb + vc);
-    return a + ab * (vb * denom) + ac * (vc * denom);
-}
-
 std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::array<int, 2>>& stitches) {
     std::vector<int> parent(static_cast<size_t>(vertex_count));
     for (int i = 0; i < vertex_count; ++i) parent[size_t(i)] = i;
@@ -444,8 +414,8 @@ Eigen::MatrixX3i sewn_faces(const GarmentMesh& mesh) {
 }
 
 bool has_sleeves(const Pattern& pattern) {
-    for (const Panel& panel : pattern.panels)
-        if (role_of(pattern, panel.name) == Role::sleeve) return true;
+    for (size_t p = 0; p < pattern.panels.size(); ++p)
+        if (role_of(pattern, p) == Role::sleeve) return true;
     return false;
 }
 
@@ -486,15 +456,15 @@ std::vector<LayerPair> layer_pairs(const GarmentMesh& mesh, const Eigen::MatrixX
             for (int k = 0; k < 3; ++k) skip = skip || rep[size_t(F(f, k))] == rep[size_t(v)];
             if (skip) continue;
             const Eigen::Vector3d p = X.row(v).transpose();
-            const Eigen::Vector3d q = closest_on_triangle(p, X.row(F(f, 0)).transpose(), X.row(F(f, 1)).transpose(),
-                                                          X.row(F(f, 2)).transpose());
+            const Eigen::Vector3d q = core::closest_point_on_triangle(
+                p, X.row(F(f, 0)).transpose(), X.row(F(f, 1)).transpose(), X.row(F(f, 2)).transpose());
             const double d = (p - q).norm();
             if (d >= radius_m) continue;
             if (mesh.panel_of_vertex(F(f, 0)) == pv && mesh.panel_of_vertex(F(f, 1)) == pv &&
                 mesh.panel_of_vertex(F(f, 2)) == pv) {
                 const auto lift = [&](int i) { return Eigen::Vector3d(P(i, 0), P(i, 1), 0.0); };
-                const double rest = (lift(int(v)) - closest_on_triangle(lift(int(v)), lift(F(f, 0)), lift(F(f, 1)),
-                                                                         lift(F(f, 2))))
+                const double rest = (lift(int(v)) - core::closest_point_on_triangle(lift(int(v)), lift(F(f, 0)),
+                                                                                    lift(F(f, 1)), lift(F(f, 2))))
                                         .norm();
                 if (rest < rest_radius_m) continue;
             }
@@ -697,7 +667,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     // section + ease (skirt_waistband) started stretched over a belly wider than it, and its
     // waistband then cut into it (docs/dressing.md).
     double skirt_waist_y = std::numeric_limits<double>::quiet_NaN();
-    if (pattern.name == "circle_skirt") {
+    if (detail::is_skirt(pattern)) {
         double waist_cm = 0;
         for (size_t p = 0; p < pattern.panels.size(); ++p)
             if (const int e = detail::waist_edge(pattern, p); e >= 0) waist_cm += pattern.panels[p].edges[size_t(e)].length();
@@ -745,7 +715,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         // The pants' pelvis part moves with the pelvis alone (blended into the legs over the
         // crotch), so the two legs do not drag the crotch across each other in a stride.
         const double pw = pelvis_weight(v);
-        if (detail::role_of(pattern, pattern.panels[panel].name) == detail::Role::leg)
+        if (detail::role_of(pattern, panel) == detail::Role::leg)
             p = pw * (skel.skinning[size_t(index(Joint::pelvis))] * Eigen::Vector3d(X.row(v).transpose())) + (1 - pw) * p;
         X.row(v) = p.transpose();
     }
@@ -753,14 +723,14 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     // 3. Radial placement outside the posed body (see place_outside_body), then the
     //    sleeves on the posed arms around the placed torso.
     const Eigen::MatrixXd body_v = body::pose_body(model, shaped, pose).vertices;
-    const Eigen::MatrixXd body_n = vertex_normals(body_v, model.faces);
+    const Eigen::MatrixXd body_n = core::vertex_normals(body_v, model.faces);  // area-weighted
     {
         Eigen::MatrixX3d placed = X;
         place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, options.clearance_m, placed);
         // Sleeves are placed anew on the posed arms (not deformed from the skinned state):
         // they take their new places at once, the rest moves guarded.
         for (int v = 0; v < nv; ++v)
-            if (detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve)
+            if (detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))) == detail::Role::sleeve)
                 X.row(v) = placed.row(v);
         // A vertex whose move would cross a neighbour that has not moved yet (the two sides
         // of an armhole start on one line) gets another pass once they have (see
@@ -774,7 +744,13 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
 
     // 4. Interpenetration removal: push offending vertices out along the body normal and
     //    let an as-rigid-as-possible deformation carry their neighbours.
-    const MeshInsideTest inside_test(body_v, model.faces);
+    const core::ClosedMeshInside inside_test(body_v, model.faces);
+    // Per row of `P`: inside the posed body.
+    const auto inside_rows = [&](const Eigen::MatrixX3d& P) {
+        std::vector<bool> in(size_t(P.rows()), false);
+        for (int i : inside_test.inside_indices(P)) in[size_t(i)] = true;
+        return in;
+    };
     // Stitched vertex pairs join the ARAP graph, so seams that wrapping closed stay closed.
     // Stitch springs (rest length zero, stiffer than cloth edges: kStitchWeight) pull seams
     // that wrapping or skinning opened towards closing while the garment is pushed out.
@@ -782,7 +758,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     std::vector<double> edge_weight(edges.size(), 1.0);
     std::vector<bool> zero_rest(edges.size(), false);
     const auto is_sleeve = [&](int v) {
-        return detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name) == detail::Role::sleeve;
+        return detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))) == detail::Role::sleeve;
     };
     for (const auto& st : mesh.stitches) {
         // Sleeve caps start open, down the arm (kSleeveOffsetM): the simulation sews them.
@@ -798,11 +774,11 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     std::vector<bool> ever(size_t(nv), false), march(size_t(nv), false);
     auto offenders = [&](std::vector<int>* ids, Eigen::MatrixX3d* targets) {
         std::vector<std::pair<int, Eigen::Vector3d>> list;
-        const std::vector<bool> in = inside_test.inside(X);
+        const std::vector<bool> in = inside_rows(X);
         for (int v = 0; v < nv; ++v) {
             const Eigen::Vector3d x = X.row(v).transpose();
             const int b = nearest_vertex(body_v, x);
-            if (!obstacle_for(detail::role_of(pattern, pattern.panels[size_t(mesh.panel_of_vertex(v))].name),
+            if (!obstacle_for(detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))),
                               dominant[size_t(b)]))
                 continue;
             const Eigen::Vector3d p = body_v.row(b).transpose(), n = body_n.row(b).transpose();
@@ -866,7 +842,7 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         }
     }
     summary.vertices_pushed = int(std::count(ever.begin(), ever.end(), true));
-    const std::vector<bool> in = inside_test.inside(X);
+    const std::vector<bool> in = inside_rows(X);
     summary.vertices_inside = int(std::count(in.begin(), in.end(), true));
     for (const auto& s : mesh.stitches)
         summary.max_seam_gap_m = std::max(summary.max_seam_gap_m, (X.row(s[0]) - X.row(s[1])).norm());

@@ -40,9 +40,14 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
 /// in the panel's pattern frame, or -1 (no open edge).
 int waist_edge(const Pattern& pattern, size_t panel);
 
-/// How a panel of a built-in template is placed (hint: other patterns).
+/// How a panel is wrapped and placed: its declared PanelRole without front / back (the
+/// placement's body part says that; hint: PanelRole::other).
 enum class Role { torso, sleeve, skirt, leg, hint };
-Role role_of(const Pattern& pattern, const std::string& panel);
+Role role_of(const Pattern& pattern, size_t panel);
+
+/// Whether every panel is a skirt panel (a skirt hanging from the waist; a dress's skirt
+/// hangs from its bodice).
+bool is_skirt(const Pattern& pattern);
 
 /// A radial envelope around a joint chain (a polyline, extended beyond both ends): for
 /// each arc length s along the axis (1 cm bins) and angle about it (5 degree bins), the
@@ -79,10 +84,6 @@ private:
 /// d for d >= soft, else a smooth (C1) increasing map of d into (0, soft): a distance that
 /// must stay positive keeps its order.
 double soft_floor(double d, double soft);
-
-/// Closest point to p on the triangle (a, b, c).
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c);
 
 /// Per vertex, one representative of its stitched group (vertices sewn together, transitively).
 std::vector<int> sewn_representatives(int vertex_count, const std::vector<std::array<int, 2>>& stitches);

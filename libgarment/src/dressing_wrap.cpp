@@ -22,17 +22,23 @@ constexpr double kMaxSkirtConeSin = 0.95;
 
 }  // namespace
 
-Role role_of(const Pattern& pattern, const std::string& panel) {
-    const std::string& g = pattern.name;
-    const bool sleeve = panel.find("sleeve") != std::string::npos;
-    if (g == "tshirt" || g == "tank_top") return sleeve ? Role::sleeve : Role::torso;
-    if (g == "circle_skirt") return Role::skirt;
-    if (g == "pants") return Role::leg;
-    if (g == "dress") {
-        if (sleeve) return Role::sleeve;
-        return panel.rfind("skirt_", 0) == 0 ? Role::skirt : Role::torso;
+Role role_of(const Pattern& pattern, size_t panel) {
+    switch (pattern.placements[panel].role) {
+        case PanelRole::front_torso:
+        case PanelRole::back_torso: return Role::torso;
+        case PanelRole::sleeve: return Role::sleeve;
+        case PanelRole::skirt: return Role::skirt;
+        case PanelRole::front_leg:
+        case PanelRole::back_leg: return Role::leg;
+        case PanelRole::other: return Role::hint;
     }
     return Role::hint;
+}
+
+bool is_skirt(const Pattern& pattern) {
+    return !pattern.placements.empty() &&
+           std::all_of(pattern.placements.begin(), pattern.placements.end(),
+                       [](const PanelPlacement& p) { return p.role == PanelRole::skirt; });
 }
 
 namespace {
@@ -132,7 +138,7 @@ void chain_at_length(const Joints& J, const std::vector<Joint>& chain, double s,
 }  // namespace
 
 std::vector<int> skinning_joints(const Pattern& pattern, int panel) {
-    const Role role = role_of(pattern, pattern.panels[size_t(panel)].name);
+    const Role role = role_of(pattern, size_t(panel));
     const BodyPart part = pattern.placements[size_t(panel)].body_part;
     std::vector<Joint> js;
     switch (role) {
@@ -281,15 +287,16 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
            torso_half_width_cm = 0;
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
-        if (pattern.name == "dress" && panel.name == "bodice_front")
-            skirt_top_y = neck_y - 0.01 * top_of(panel);
-        if (pattern.name == "pants" && panel.name == "front_right") {
+        const PanelPlacement& place = pattern.placements[p];
+        // A skirt sewn to a bodice hangs from its front panel's hem.
+        if (place.role == PanelRole::front_torso) skirt_top_y = neck_y - 0.01 * top_of(panel);
+        if (place.role == PanelRole::front_leg && place.body_part == BodyPart::right_leg) {
             pants_waist_cm = top_of(panel);
             double x_max = -1e300;  // the crotch point is the panel's innermost (largest x) corner
             for (const Edge& e : panel.edges)
                 if (e.start.x() > x_max) x_max = e.start.x(), pants_inseam_cm = e.start.y();
         }
-        if (role_of(pattern, panel.name) == Role::torso && pattern.placements[p].body_part == BodyPart::front_torso) {
+        if (role_of(pattern, p) == Role::torso && place.body_part == BodyPart::front_torso) {
             Eigen::Vector2d lo, hi;
             panel.bounds(&lo, &hi);
             torso_half_width_cm = 0.5 * (hi.x() - lo.x());
@@ -300,7 +307,7 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
         const Panel& panel = pattern.panels[p];
         const PanelPlacement& place = pattern.placements[p];
-        const Role role = role_of(pattern, panel.name);
+        const Role role = role_of(pattern, p);
         if (base && role != Role::sleeve) continue;
         std::vector<Eigen::Vector2d> poly = panel.outline(0.5);
         const double top = top_of(panel);
@@ -344,7 +351,7 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
             return std::pair<double, double>(std::min(a, b), std::max(a, b));
         };
         const bool back = place.body_part == BodyPart::back_torso ||
-                          (role == Role::leg && panel.name.rfind("back", 0) == 0);
+                          place.role == PanelRole::back_leg;
         for (int v = 0; v < nv; ++v) {
             if (mesh.panel_of_vertex(v) != int(p)) continue;
             const Eigen::Vector2d q0 = mesh.panel_point_cm.row(v).transpose();
@@ -432,7 +439,9 @@ Eigen::MatrixX3d wrap_panels(const Pattern& pattern, const GarmentMesh& mesh, co
                     const Eigen::Vector2d c = chain_at_height(J, torso, y);
                     const Eigen::Vector2d sec = torso_section(y).cwiseMax(0.02);
                     const double s_ = 4 * 0.01 * width / ellipse_perimeter(sec.x(), sec.y());
-                    const bool generic = panel.name == "front_right" || panel.name == "back_left";
+                    // The generic panels (front right, back left; the others are their mirrors).
+                    const bool generic = (place.role == PanelRole::front_leg && place.body_part == BodyPart::right_leg) ||
+                                         (place.role == PanelRole::back_leg && place.body_part == BodyPart::left_leg);
                     const double phi = (generic ? -0.25 : 0.25) * kPi + 0.5 * kPi * t;
                     const Eigen::Vector3d pelvis(c.x() + sx * s_ * sec.x() * std::sin(phi), y,
                                                  c.y() + sx * s_ * sec.y() * std::cos(phi));

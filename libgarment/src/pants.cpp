@@ -119,6 +119,7 @@ Pattern make_pants(const PantsSizing& g) {
     const auto placement = [](BodyPart part, double x, bool is_back) {
         PanelPlacement pl;
         pl.body_part = part;
+        pl.role = is_back ? PanelRole::back_leg : PanelRole::front_leg;
         pl.translation_cm = Eigen::Vector3d(x, 0.0, is_back ? -kNominalHalfDepthCm : kNominalHalfDepthCm);
         if (is_back) pl.rotation_deg = Eigen::Vector3d(0, 180, 0);
         return pl;

@@ -97,6 +97,7 @@ std::string pattern_to_garmentcode_json(const Pattern& pattern) {
                               {"vertices", vertices},
                               {"edges", edges},
                               {"drape_body_part", std::string(body_part_name(pl.body_part))},
+                              {"drape_role", std::string(panel_role_name(pl.role))},
                               {"drape_grain", xy(panel.grain, kRel)},
                               {"drape_notches", notches},
                               {"drape_internal_lines", lines}};
@@ -242,6 +243,7 @@ Pattern parse_pattern(const std::string& text) {
         pl.translation_cm = scale * vec3("translation");
         pl.rotation_deg = vec3("rotation");
         if (jp.contains("drape_body_part")) pl.body_part = body_part_from_name(jp["drape_body_part"].get<std::string>());
+        if (jp.contains("drape_role")) pl.role = panel_role_from_name(jp["drape_role"].get<std::string>());
         pattern.panels.push_back(std::move(panel));
         pattern.placements.push_back(pl);
         edge_map.push_back(map);

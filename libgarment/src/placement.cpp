@@ -10,10 +10,21 @@ namespace drape::garment {
 namespace {
 constexpr std::array<std::string_view, 6> kNames = {
     "front_torso", "back_torso", "left_sleeve", "right_sleeve", "left_leg", "right_leg"};
+constexpr std::array<std::string_view, 7> kRoleNames = {"other",  "front_torso", "back_torso", "sleeve",
+                                                         "skirt",  "front_leg",   "back_leg"};
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 }  // namespace
 
 std::string_view body_part_name(BodyPart part) { return kNames[static_cast<int>(part)]; }
+
+std::string_view panel_role_name(PanelRole role) { return kRoleNames[static_cast<int>(role)]; }
+
+PanelRole panel_role_from_name(std::string_view name) {
+    for (size_t i = 0; i < kRoleNames.size(); ++i)
+        if (kRoleNames[i] == name) return static_cast<PanelRole>(i);
+    throw InvalidInput("unknown panel role '" + std::string(name) +
+                       "' (expected other, front_torso, back_torso, sleeve, skirt, front_leg or back_leg)");
+}
 
 BodyPart body_part_from_name(std::string_view name) {
     for (size_t i = 0; i < kNames.size(); ++i)

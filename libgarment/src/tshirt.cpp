@@ -58,8 +58,10 @@ Pattern make_tshirt(const TShirtSizing& g) {
     pattern.panels = {body("front", g.r), body("back", kBackNeckDepthRatio * g.r)};
     PanelPlacement pf, pb;
     pf.body_part = BodyPart::front_torso;
+    pf.role = PanelRole::front_torso;
     pf.translation_cm = Eigen::Vector3d(0, kNominalNeckPointHeightCm - g.h2, kNominalHalfDepthCm);
     pb.body_part = BodyPart::back_torso;
+    pb.role = PanelRole::back_torso;
     pb.translation_cm = Eigen::Vector3d(0, kNominalNeckPointHeightCm - g.h2, -kNominalHalfDepthCm);
     pb.rotation_deg = Eigen::Vector3d(0, 180, 0);
     pattern.placements = {pf, pb};
@@ -84,6 +86,7 @@ Pattern make_tshirt(const TShirtSizing& g) {
         const double y_shoulder = kNominalNeckPointHeightCm - kTShirtShoulderDrop;
         PanelPlacement pl, pr;
         pl.body_part = BodyPart::left_sleeve;
+        pl.role = pr.role = PanelRole::sleeve;
         pl.rotation_deg = Eigen::Vector3d(0, 0, 90);   // panel +y (towards the cap) -> -X
         pl.translation_cm = Eigen::Vector3d(x + g.l1, y_shoulder, 0);
         pr.body_part = BodyPart::right_sleeve;

@@ -12,7 +12,7 @@
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/dressing.hpp>
 #include <drape/fixtures/eval_bodies.hpp>
-#include <drape/garment/mesh_inside.hpp>
+#include <drape/core/point_in_mesh.hpp>
 #include <drape/garment/pants.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 #include <drape/garment/tshirt.hpp>
@@ -44,7 +44,7 @@ struct PosedDefaultBody {
     body::BodyMeasurements m;
     body::Pose pose;
     body::PosedBody posed;
-    std::unique_ptr<MeshInsideTest> inside;
+    std::unique_ptr<drape::core::ClosedMeshInside> inside;
 
     explicit PosedDefaultBody(body::NamedPose which) {
         shaped.coefficients = Eigen::VectorXd::Zero(model.shape_count());
@@ -53,7 +53,7 @@ struct PosedDefaultBody {
         m = body::measure_body(model, shaped.vertices);
         pose = body::named_pose(which);
         posed = body::pose_body(model, shaped, pose);
-        inside = std::make_unique<MeshInsideTest>(posed.vertices, model.faces);
+        inside = std::make_unique<drape::core::ClosedMeshInside>(posed.vertices, model.faces);
     }
     /// Meshes `pattern` at 2.5 cm and dresses it on this body.
     DressingSummary dress(const Pattern& pattern, GarmentMesh& mesh, Eigen::MatrixX3d& X) const {
@@ -62,28 +62,10 @@ struct PosedDefaultBody {
         REQUIRE(mesh_pattern(pattern, mo, mesh).usable());
         return dress_garment(pattern, mesh, model, shaped, pose, DressingOptions{}, X);
     }
-    int count_inside(const Eigen::MatrixX3d& X) const {
-        int n = 0;
-        for (bool b : inside->inside(X)) n += b;
-        return n;
-    }
+    int count_inside(const Eigen::MatrixX3d& X) const { return int(inside->inside_indices(X).size()); }
 };
 
 }  // namespace
-
-TEST_CASE("mesh inside test: points in and around a cube", "[garment][dressing]") {
-    Eigen::MatrixXd V(8, 3);
-    V << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
-    Eigen::MatrixXi F(12, 3);
-    F << 0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 2, 3, 7, 2, 7, 6, 1, 2, 6, 1, 6, 5,
-        0, 4, 7, 0, 7, 3;
-    const MeshInsideTest test(V, F);
-    CHECK(test.inside(Eigen::Vector3d(0.5, 0.5, 0.5)));
-    CHECK(test.inside(Eigen::Vector3d(0.01, 0.99, 0.5)));
-    CHECK_FALSE(test.inside(Eigen::Vector3d(1.5, 0.5, 0.5)));
-    CHECK_FALSE(test.inside(Eigen::Vector3d(0.5, 1.01, 0.5)));
-    CHECK_FALSE(test.inside(Eigen::Vector3d(0.5, -0.01, 0.5)));
-}
 
 TEST_CASE("rigid alignment recovers a rotation and translation", "[garment][dressing]") {
     Eigen::MatrixX3d q(4, 3);

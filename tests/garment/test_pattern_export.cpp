@@ -170,6 +170,7 @@ TEST_CASE("garmentcode json: export -> import -> export is identical", "[garment
             CHECK(q.panels[i].name == p.panels[i].name);
             CHECK(q.panels[i].area() == Approx(p.panels[i].area()).epsilon(1e-9));
             CHECK(q.placements[i].body_part == p.placements[i].body_part);
+            CHECK(q.placements[i].role == p.placements[i].role);
         }
         REQUIRE(q.seams.size() == p.seams.size());
         for (size_t s = 0; s < p.seams.size(); ++s) {

@@ -189,3 +189,23 @@ TEST_CASE("any-template sizing: proposals and patterns per type", "[garment][tem
     const GarmentSizing pants = fit_top_to_body(proposed_sizing(GarmentType::pants, m), model, shaped);
     CHECK(pants.pants.w1 == propose_pants_sizing(m).w1);
 }
+
+TEST_CASE("templates declare a typed role per panel", "[garment][templates]") {
+    const auto roles = [](const Pattern& p) {
+        std::vector<PanelRole> r;
+        for (const PanelPlacement& pl : p.placements) r.push_back(pl.role);
+        return r;
+    };
+    using R = PanelRole;
+    CHECK(roles(make_circle_skirt(SkirtSizing{})) == std::vector<R>{R::skirt, R::skirt});
+    CHECK(roles(make_pants(PantsSizing{})) == std::vector<R>{R::front_leg, R::front_leg, R::back_leg, R::back_leg});
+    CHECK(roles(make_tshirt(TShirtSizing{})) == std::vector<R>{R::front_torso, R::back_torso, R::sleeve, R::sleeve});
+    TShirtSizing tank;
+    tank.l1 = 0;
+    CHECK(roles(make_tshirt(tank)) == std::vector<R>{R::front_torso, R::back_torso});
+    CHECK(roles(make_dress(DressSizing{})) ==
+          std::vector<R>{R::front_torso, R::back_torso, R::sleeve, R::sleeve, R::skirt, R::skirt});
+    for (R r : {R::other, R::front_torso, R::back_torso, R::sleeve, R::skirt, R::front_leg, R::back_leg})
+        CHECK(panel_role_from_name(panel_role_name(r)) == r);
+    CHECK(error_of([] { panel_role_from_name("collar"); }).find("'collar'") != std::string::npos);
+}
