@@ -370,7 +370,7 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--names", args->names, "evaluate only these photos (NAME without extension)");
     cmd->add_flag("--scale-check", args->scale_check,
                   "also measure the wrinkle density of the hand-labelled garments at x0.5 and x2");
-    // SegmentationOptions members exposed for tuning (docs/vision.md, "Tuning tried").
+    // SegmentationOptions members exposed for tuning (docs/notes/vision.md, "Tuning tried").
     vision::SegmentationOptions& o = args->options;
     const std::pair<const char*, double*> tuning[] = {
         {"smoothness", &o.smoothness},

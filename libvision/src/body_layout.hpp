@@ -1,5 +1,5 @@
 // Pose-derived layout of the automatic segmentation: where background, skin, hair, upper
-// and lower garment can be, from the 14 joints (docs/vision.md, "Automatic mode").
+// and lower garment can be, from the 14 joints (docs/vision.md, "Segmentation").
 #pragma once
 
 #include <drape/vision/joints.hpp>

@@ -60,7 +60,7 @@ TEST_CASE("drape segment writes labels, garments, overlays (auto and strokes)", 
         bool lower = false;
         for (const auto& e : g["garments"]) {
             // Strokes carry the skirt class; the automatic classifier calls this ankle-length
-            // skirt "pants" (docs/vision.md, known confusion), so only the part is checked.
+            // skirt "pants" (docs/vision.md, "Garment type"), so only the part is checked.
             lower |= mode == "strokes" ? e["type"] == "skirt"
                                        : (e["type"] == "skirt" || e["type"] == "pants");
             CHECK(e["wrinkle_density_per_m2"].get<double>() >= 0);

@@ -104,7 +104,7 @@ void check_outside_default_body(const std::vector<std::pair<const char*, Pattern
         const Eigen::RowVector3d lo = posed.vertices.colwise().minCoeff(), hi = posed.vertices.colwise().maxCoeff();
         CHECK((X.rowwise() - lo).minCoeff() > -0.4);
         CHECK((X.rowwise() - hi).maxCoeff() < 0.4);
-        // (The pants on this body still start with ~26 crossings at the crotch: docs/dressing.md.)
+        // (The pants on this body still start with ~26 crossings at the crotch: docs/notes/dressing.md.)
         if (std::string(name) != "pants") CHECK(s.self_intersections == 0);
     }
 }
@@ -176,7 +176,7 @@ TEST_CASE("dressing: t-shirt and dress on the default body in A-pose are outside
                                 {"dress", make_dress(propose_dress_sizing(b.m))}});
 }
 
-// Hidden: OPEN (issue 4, docs/dressing.md). Since the push-out no longer moves vertices
+// Hidden: OPEN (issue 4, docs/notes/dressing.md). Since the push-out no longer moves vertices
 // through other panels, on this (zero-coefficient) body the crotch seam of the walking
 // pants stays 3.4 cm open. Run it with: drape_garment_tests "[open]".
 TEST_CASE("dressing: pants in a walking pose are outside the body with the crotch seam near",
@@ -301,7 +301,7 @@ std::vector<DressedCase> dress_all(double edge_cm) {
 }  // namespace
 
 TEST_CASE("dressing eval: every template on the mean bodies in three poses (table)", "[.eval][dressing]") {
-    // Prints the docs/dressing.md table; DRAPE_DRESS_EDGE_CM overrides the 4 cm edges.
+    // Prints the docs/notes/dressing.md table; DRAPE_DRESS_EDGE_CM overrides the 4 cm edges.
     const double edge_cm = std::getenv("DRAPE_DRESS_EDGE_CM") ? std::atof(std::getenv("DRAPE_DRESS_EDGE_CM")) : 4.0;
     std::printf("| case | self-int. | penetration mm | min layer mm | close pairs | seam gap mm | s |\n");
     for (const DressedCase& c : dress_all(edge_cm)) {
@@ -316,7 +316,7 @@ TEST_CASE("dressing eval: every template on the mean bodies in three poses (tabl
 
 TEST_CASE("dressing: every template starts clean on the mean female in A-pose; skirt, pants, tank top on the male",
           "[garment][dressing]") {
-    // The cases of the 36-case table (docs/dressing.md) that are clean: no self-intersection
+    // The cases of the 36-case table (docs/notes/dressing.md) that are clean: no self-intersection
     // (seam partners as one vertex) and nothing deeper than 1 mm inside the body.
     struct Case {
         body::Gender gender;
@@ -447,7 +447,7 @@ TEST_CASE("dressing eval: every template on the five ANSUR bodies in A-pose (tab
 TEST_CASE("dressing: t-shirt and dress start without crossings or penetration on the five ANSUR bodies in A-pose",
           "[garment][dressing]") {
     // Before the untangling step (2026-11-23) the dress crossed itself on 4 of these bodies
-    // (2-29 pairs) and the t-shirt on 3 (1-7): docs/dressing.md.
+    // (2-29 pairs) and the t-shirt on 3 (1-7): docs/notes/dressing.md.
     int untangled = 0;
     for (const EvalBody& a : kEvalBodies) {
         const ShapedAnsurBody b(a);
@@ -459,7 +459,7 @@ TEST_CASE("dressing: t-shirt and dress start without crossings or penetration on
             INFO(name << " on " << a.name << ": " << s.brief_report() << "; " << c.brief_report()
                       << "; cap stitches up to " << cap_angle << " degrees apart about the arm");
             CHECK(c.self_intersections == 0);
-            // Armhole and sleeve cap on the same side of the arm root (docs/dressing.md: on
+            // Armhole and sleeve cap on the same side of the arm root (docs/notes/dressing.md: on
             // the 5th-percentile man the right cap was to be sewn to armhole points up to
             // 175 degrees away, and the seam closed through his shoulder).
             CHECK(cap_angle < kMaxCapStitchAngleDeg);

@@ -44,7 +44,7 @@ struct SimulatorOptions {
     /// inertia plus a positive semi-definite part) is within it too; the check costs one
     /// gradient evaluation. 0 disables it. 100 µm (2 cm/s over 5 ms) since 2026-11-24, was
     /// 10 µm without the residual check: 20-25 % fewer factorisations, same anchor rest
-    /// state (docs/cloth.md, "Solver speed, third pass").
+    /// state (docs/cloth.md, "When a time step ends").
     double step_displacement_tolerance_m = 1e-4;
     /// A time step ends (StepTermination::max_iterations, usable) after this many Newton
     /// iterations whose exact matrix was indefinite (solved with the projected one or a

@@ -78,7 +78,7 @@ TShirtSizing fit_sleeves(TShirtSizing g, double arm_girth_m, double ease_cm = kS
 
 /// Neckline ease (cm): a neckline this much longer than the neck lies on the shoulders
 /// around its base (the stature ratio of propose_tshirt_sizing made it too small for a
-/// thick neck, and the bodice cut 24-42 mm into it: docs/dressing.md).
+/// thick neck, and the bodice cut 24-42 mm into it: docs/garment-patterns.md, "Sizing from a body").
 constexpr double kNecklineEaseCm = 8.0;
 
 /// The girth (m) of the rest body's neck: the section normal to the neck (neck to head
