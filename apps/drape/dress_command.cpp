@@ -27,6 +27,7 @@
 #include <drape/garment/pattern_json.hpp>
 #include <drape/garment/pattern_svg.hpp>
 #include <drape/garment/sizing_proposal.hpp>
+#include <drape/render/preview.hpp>
 #include <drape/render/renderer.hpp>
 
 #include <CLI/CLI.hpp>
@@ -78,42 +79,14 @@ body::Pose resolve_pose(const std::string& name) {
     throw InvalidInput("--pose '" + name + "' is not a_pose, arms_down, walking, t_pose or a POSE.json file");
 }
 
-/// Body and garment from the front-left, on a floor, studio light.
+/// Body and garments from the front-left, on a floor, studio light (render::preview_scene).
 cv::Mat write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,
                   const std::vector<const garment::GarmentMesh*>& meshes, const std::vector<Eigen::MatrixX3d>& Xs,
                   int width = 600, int height = 900) {
-    render::Scene scene;
-    render::Mesh b;
-    b.name = "body";
-    b.V = body_V;
-    b.F = body_F;
-    b.material.colour_srgb = {0.80, 0.74, 0.67};
-    b.material.roughness = 0.55;
-    scene.meshes.push_back(std::move(b));
-    // Blue, then terracotta, then olive for the garments of an outfit.
-    const std::array<Eigen::Vector3d, 3> colours = {Eigen::Vector3d(0.20, 0.33, 0.62), Eigen::Vector3d(0.66, 0.33, 0.22),
-                                                    Eigen::Vector3d(0.42, 0.47, 0.25)};
-    double floor_y = body_V.col(1).minCoeff();
-    for (size_t k = 0; k < meshes.size(); ++k) {
-        render::Mesh g;
-        g.name = "garment" + std::to_string(k);
-        g.V = Xs[k];
-        g.F = meshes[k]->cloth.faces;
-        g.UV = meshes[k]->uv;
-        g.material.colour_srgb = colours[k % colours.size()];
-        g.material.roughness = 0.85;
-        g.smooth_subdivisions = render::kSimulatedGarmentSubdivisions;  // flat, they cut chords through the body
-        scene.meshes.push_back(std::move(g));
-        floor_y = std::min(floor_y, Xs[k].col(1).minCoeff());
-    }
-    scene.floor.enabled = true;
-    scene.floor.height_m = floor_y;
-    const Eigen::Vector3d lo = body_V.colwise().minCoeff(), hi = body_V.colwise().maxCoeff();
-    const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    const double focal = 0.5 * height / std::tan(15.0 * 3.14159265358979323846 / 180.0);  // 30° vertical view
-    const double dist = 1.15 * (hi.y() - lo.y()) * focal / height;
-    const Eigen::Vector3d eye = centre + dist * Eigen::Vector3d(0.35, 0.05, 1.0).normalized();
-    const render::Camera camera = render::Camera::look_at(eye, centre, {0, 1, 0}, focal, width, height);
+    std::vector<render::PreviewGarment> garments;
+    for (size_t k = 0; k < meshes.size(); ++k) garments.push_back({Xs[k], meshes[k]->cloth.faces, meshes[k]->uv});
+    const render::Scene scene = render::preview_scene(body_V, body_F, garments);
+    const render::Camera camera = render::preview_camera(body_V, width, height);
     render::RenderImages images;
     const render::RenderSummary s =
         render::render(scene, camera, render::lighting_preset(render::LightingPreset::studio), {}, images);

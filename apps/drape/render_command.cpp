@@ -14,6 +14,7 @@
 #include <drape/body/shape_body.hpp>
 #include <drape/core/errors.hpp>
 #include <drape/render/overlay.hpp>
+#include <drape/render/preview.hpp>
 #include <drape/render/renderer.hpp>
 
 #include <CLI/CLI.hpp>
@@ -195,22 +196,6 @@ int label_from_name(const std::string& path) {
     return 54;  // "top": the generic garment class
 }
 
-render::Camera front_camera(const render::Scene& scene, int width, int height) {
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
-    for (const render::Mesh& m : scene.meshes) {
-        lo = lo.cwiseMin(m.V.colwise().minCoeff().transpose());
-        hi = hi.cwiseMax(m.V.colwise().maxCoeff().transpose());
-    }
-    // A 50 mm-like portrait lens (vertical field of view 30 degrees), framing the whole
-    // scene with a 12 % margin, camera at mid height in front (+Z).
-    const double tan_half = std::tan(15.0 * 3.14159265358979323846 / 180.0);
-    const double focal = 0.5 * height / tan_half;
-    const Eigen::Vector3d centre = 0.5 * (lo + hi);
-    const double need_h = 1.12 * (hi.y() - lo.y()), need_w = 1.12 * (hi.x() - lo.x());
-    const double dist = std::max(need_h * focal / height, need_w * focal / width) + 0.5 * (hi.z() - lo.z());
-    return render::Camera::look_at({centre.x(), centre.y(), hi.z() + dist}, centre, {0, 1, 0}, focal, width, height);
-}
-
 render::Camera camera_from_file(const std::string& file, int width, int height) {
     const nlohmann::json j = read_json_file(file);
     const nlohmann::json& c = j.contains("camera") && j["camera"].is_object() ? j["camera"] : j;
@@ -307,7 +292,7 @@ void run_render(const RenderArgs& args) {
 
     const render::Camera camera = fitted ? render::Camera::from_body(*body.camera, width, height)
                                   : args.camera == "front" || args.camera == "auto"
-                                      ? front_camera(scene, width, height)
+                                      ? render::front_camera(scene, width, height)
                                       : camera_from_file(args.camera, width, height);
     if (scene.backdrop.enabled) {
         double min_z = 1e300;

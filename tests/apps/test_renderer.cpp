@@ -6,6 +6,7 @@
 #include <drape/render/camera.hpp>
 #include <drape/render/lighting.hpp>
 #include <drape/render/overlay.hpp>
+#include <drape/render/preview.hpp>
 #include <drape/render/renderer.hpp>
 
 #include "render_shapes.hpp"
@@ -504,4 +505,33 @@ TEST_CASE("a coarse garment drawn with smooth_subdivisions hides the body under 
     CHECK(smooth == 0);
     scene.meshes[1].smooth_subdivisions = 5;
     CHECK_THROWS_AS(scene.validate(), drape::InvalidInput);
+}
+
+TEST_CASE("preview_scene and its cameras frame a dressed body", "[render][preview]") {
+    // A 1.7 m tall "body" (a stretched sphere) and a "garment" shell around its middle.
+    Mesh body = icosphere(Eigen::Vector3d(0, 0.85, 0), 1.0, 2, 1);
+    body.V.col(0) *= 0.2;
+    body.V.col(1) = (body.V.col(1).array() - 0.85) * 0.85 + 0.85;
+    body.V.col(2) *= 0.15;
+    Mesh shell = icosphere(Eigen::Vector3d(0, 1.0, 0), 0.25, 1, 2);
+    const Scene scene = preview_scene(body.V, body.F, {{shell.V, shell.F, Eigen::MatrixXd()}, {shell.V, shell.F, {}}});
+    REQUIRE(scene.meshes.size() == 3);
+    CHECK(scene.meshes[1].material.colour_srgb != scene.meshes[2].material.colour_srgb);
+    CHECK(scene.meshes[1].smooth_subdivisions == kSimulatedGarmentSubdivisions);
+    CHECK(scene.floor.enabled);
+    CHECK(scene.floor.height_m == Approx(body.V.col(1).minCoeff()));
+    for (const Camera& cam : {preview_camera(body.V, 300, 450), front_camera(scene, 300, 450)}) {
+        double top = 1e9, bottom = -1e9;
+        for (Eigen::Index v = 0; v < body.V.rows(); ++v) {
+            const Eigen::Vector2d p = cam.project(body.V.row(v).transpose());
+            CHECK((p.x() > 0 && p.x() < 300 && p.y() > 0 && p.y() < 450));
+            top = std::min(top, p.y());
+            bottom = std::max(bottom, p.y());
+        }
+        // Framed with a margin, but filling most of the height.
+        CHECK(bottom - top > 0.75 * 450);
+        CHECK(bottom - top < 0.95 * 450);
+    }
+    CHECK_THROWS_AS(preview_camera(Eigen::MatrixXd(0, 3), 300, 450), drape::InvalidInput);
+    CHECK_THROWS_AS(front_camera(Scene{}, 300, 450), drape::InvalidInput);
 }
