@@ -237,17 +237,7 @@ namespace {
 // the bottom's waistband. Files per garment carry its name (garment_tshirt.obj, ...).
 void run_dress_outfit(const DressArgs& args) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<GarmentType> types;
-    for (size_t a = 0; a <= args.garment.size();) {
-        const size_t b = std::min(args.garment.find('+', a), args.garment.size());
-        types.push_back(garment_type_from_name(args.garment.substr(a, b - a)));
-        a = b + 1;
-    }
-    const auto is_top = [](GarmentType t) { return t == GarmentType::tshirt; };
-    const auto is_bottom = [](GarmentType t) { return t == GarmentType::pants || t == GarmentType::skirt; };
-    require(types.size() == 2 && ((is_top(types[0]) && is_bottom(types[1])) || (is_bottom(types[0]) && is_top(types[1]))),
-            "--garment '", args.garment, "': an outfit is a top and a bottom (tshirt+pants or tshirt+skirt)");
-    if (is_top(types[0])) std::swap(types[0], types[1]);  // inner (bottom) first
+    const std::vector<GarmentType> types = outfit_from_spec(args.garment);  // inner (bottom) first
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
     const body::Pose requested_pose = resolve_pose(args.pose);
     std::string material_source;

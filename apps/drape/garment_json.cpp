@@ -68,4 +68,18 @@ nlohmann::json to_json(const GarmentSizing& g) {
     return {};
 }
 
+std::vector<GarmentType> outfit_from_spec(const std::string& spec) {
+    std::vector<GarmentType> types;
+    try {
+        for (size_t a = 0; a <= spec.size();) {
+            const size_t b = std::min(spec.find('+', a), spec.size());
+            types.push_back(garment::garment_type_from_name(spec.substr(a, b - a)));
+            a = b + 1;
+        }
+        return garment::outfit_layers(types);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("--garment '" + spec + "': " + e.what());
+    }
+}
+
 }  // namespace drape::app

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace drape::app {
 
@@ -32,5 +33,10 @@ using garment::proposed_sizing;
 /// pattern is made).
 GarmentSizing sizing_from_json(GarmentType type, const nlohmann::json& j, const std::string& file);
 nlohmann::json to_json(const GarmentSizing& sizing);
+
+/// The garments of `--garment` ("skirt", "tshirt+pants", ...: template names joined by '+')
+/// in layering order, inner first (garment::outfit_layers).
+/// \throw InvalidInput naming the option and its value for an unknown name or outfit.
+std::vector<GarmentType> outfit_from_spec(const std::string& spec);
 
 }  // namespace drape::app

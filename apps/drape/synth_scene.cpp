@@ -21,27 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 using garment::GarmentType;
 
-std::vector<GarmentType> garments_of(const std::string& spec) {
-    std::vector<GarmentType> out;
-    std::size_t start = 0;
-    for (;;) {
-        const std::size_t plus = spec.find('+', start);
-        out.push_back(garment::garment_type_from_name(spec.substr(start, plus - start)));
-        if (plus == std::string::npos) break;
-        start = plus + 1;
-    }
-    require(out.size() <= 2, "--garment '", spec, "': at most two garments (an upper and a lower one)");
-    if (out.size() == 2) {
-        // Lower garment first: the upper one is draped over it (untucked).
-        std::sort(out.begin(), out.end(), [](GarmentType a, GarmentType b) {
-            return (a == GarmentType::tshirt) < (b == GarmentType::tshirt);
-        });
-        require(out[0] != GarmentType::tshirt && out[0] != GarmentType::dress && out[1] == GarmentType::tshirt,
-                "--garment '", spec, "': an outfit is a t-shirt with pants or a skirt (tshirt+pants, tshirt+skirt)");
-    }
-    return out;
-}
-
 body::NamedPose pose_of(const std::string& letter) {
     if (letter == "a") return body::NamedPose::a_pose;
     if (letter == "b") return body::NamedPose::arms_down;
@@ -174,7 +153,7 @@ void write_scene_files(const fs::path& dir, const synth::SynthScene& scene, cons
 }  // namespace
 
 synth::SynthOptions with_choices(synth::SynthOptions base, const SynthChoices& choices) {
-    base.garments = choices.garment == "random" ? std::vector<GarmentType>{} : garments_of(choices.garment);
+    base.garments = choices.garment == "random" ? std::vector<GarmentType>{} : outfit_from_spec(choices.garment);
     base.pose = choices.pose == "random" ? std::nullopt : std::optional<body::NamedPose>(pose_of(choices.pose));
     base.fabric = choices.material == "random" ? std::string() : choices.material;
     return base;

@@ -22,4 +22,18 @@ std::string garment_type_name(GarmentType type) {
     return "?";
 }
 
+std::vector<GarmentType> outfit_layers(const std::vector<GarmentType>& garments) {
+    const auto is_top = [](GarmentType t) { return t == GarmentType::tshirt; };
+    const auto is_bottom = [](GarmentType t) { return t == GarmentType::pants || t == GarmentType::skirt; };
+    if (garments.size() == 1) return garments;
+    if (garments.size() == 2) {
+        if (is_bottom(garments[0]) && is_top(garments[1])) return garments;
+        if (is_top(garments[0]) && is_bottom(garments[1])) return {garments[1], garments[0]};
+    }
+    std::string names;
+    for (GarmentType t : garments) names += (names.empty() ? "" : "+") + garment_type_name(t);
+    throw InvalidInput("outfit '" + names +
+                       "': an outfit is one garment, or a top and a bottom (tshirt+pants or tshirt+skirt)");
+}
+
 }  // namespace drape::garment

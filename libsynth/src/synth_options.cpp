@@ -1,5 +1,7 @@
 #include <drape/synth/synth_options.hpp>
 
+#include <drape/core/errors.hpp>
+
 #include <cmath>
 
 namespace drape::synth {
@@ -19,11 +21,13 @@ bool SynthOptions::is_valid(std::string* why) const {
     if (threads < 0) return fail("threads must be >= 0");
     if (!std::isfinite(bending_scale) || bending_scale > 1e4)
         return fail("bending scale " + std::to_string(bending_scale) + " must be finite and <= 1e4");
-    using garment::GarmentType;
-    if (garments.size() > 2) return fail("at most two garments (an upper and a lower one)");
-    if (garments.size() == 2 && !((garments[0] == GarmentType::pants || garments[0] == GarmentType::skirt) &&
-                                  garments[1] == GarmentType::tshirt))
-        return fail("an outfit is pants or a skirt, then a t-shirt over it");
+    if (!garments.empty()) {
+        try {
+            if (garment::outfit_layers(garments) != garments) return fail("an outfit's garments come inner first");
+        } catch (const InvalidInput& e) {
+            return fail(e.what());
+        }
+    }
     if (pose && *pose == body::NamedPose::t_pose) return fail("pose must be a_pose, arms_down or walking");
     return true;
 }

@@ -169,6 +169,19 @@ TEST_CASE("garment types: names round-trip, unknown names are rejected", "[garme
     CHECK(error_of([] { garment_type_from_name("kilt"); }).find("'kilt'") != std::string::npos);
 }
 
+TEST_CASE("outfit layers: one garment, or a bottom then a top over it", "[garment][templates]") {
+    using T = GarmentType;
+    for (T t : {T::skirt, T::pants, T::tshirt, T::dress}) CHECK(outfit_layers({t}) == std::vector<T>{t});
+    CHECK(outfit_layers({T::pants, T::tshirt}) == std::vector<T>{T::pants, T::tshirt});
+    CHECK(outfit_layers({T::tshirt, T::pants}) == std::vector<T>{T::pants, T::tshirt});
+    CHECK(outfit_layers({T::tshirt, T::skirt}) == std::vector<T>{T::skirt, T::tshirt});
+    CHECK(error_of([] { outfit_layers({T::dress, T::tshirt}); }).find("'dress+tshirt'") != std::string::npos);
+    CHECK(error_of([] { outfit_layers({T::pants, T::skirt}); }).find("a top and a bottom") != std::string::npos);
+    CHECK(error_of([] { outfit_layers({T::tshirt, T::tshirt}); }).find("'tshirt+tshirt'") != std::string::npos);
+    CHECK(error_of([] { outfit_layers({T::skirt, T::tshirt, T::pants}); }).find("outfit") != std::string::npos);
+    CHECK(error_of([] { outfit_layers({}); }).find("outfit") != std::string::npos);
+}
+
 TEST_CASE("any-template sizing: proposals and patterns per type", "[garment][templates]") {
     const auto& model = drape::body::BodyModel::default_model();
     const drape::body::ShapedBody shaped =

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace drape::garment {
 
@@ -17,5 +18,11 @@ GarmentType garment_type_from_name(const std::string& name);
 
 /// The name garment_type_from_name reads.
 std::string garment_type_name(GarmentType type);
+
+/// The garments of an outfit in the order they are dressed and draped, inner first. An
+/// outfit is one garment, or a top (t-shirt) and a bottom (pants or a skirt) in either
+/// order: the bottom comes first and the top is worn over its waistband (untucked).
+/// \throw drape::InvalidInput naming the garments otherwise.
+std::vector<GarmentType> outfit_layers(const std::vector<GarmentType>& garments);
 
 }  // namespace drape::garment

@@ -35,8 +35,8 @@ struct SynthOptions {
     int samples_per_pixel = 16;  ///< 1..4096
     int threads = 0;           ///< render threads (0 = all); the output does not depend on it
 
-    /// The ranges above; garments as described (at most two; a pair is pants or skirt,
-    /// then tshirt); pose not t_pose.
+    /// The ranges above; garments an outfit in layering order (garment::outfit_layers: one
+    /// garment, or pants or a skirt, then a t-shirt); pose not t_pose.
     bool is_valid(std::string* why = nullptr) const;
 };
 
