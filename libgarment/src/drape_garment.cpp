@@ -1,6 +1,5 @@
 #include <drape/garment/drape_garment.hpp>
 
-#include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
 
 #include "dressing_internal.hpp"

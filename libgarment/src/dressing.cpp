@@ -7,14 +7,13 @@
 
 #include <drape/core/closest_point_triangle.hpp>
 #include <drape/core/point_in_mesh.hpp>
-#include <drape/core/vertex_normals.hpp>
 
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
 
 #include <Eigen/SVD>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <chrono>
