@@ -1,9 +1,9 @@
 #include <drape/garment/drape_garment.hpp>
 
-#include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
 
 #include "dressing_internal.hpp"
+#include "drape_run.hpp"
 
 #include <drape/cloth/intersections.hpp>
 
@@ -27,10 +27,6 @@ const char* termination_name(DrapeTermination t) {
         case DrapeTermination::cancelled: return "cancelled";
     }
     return "?";
-}
-
-double kinetic_energy(const cloth::Simulator& sim) {
-    return 0.5 * (sim.masses().array() * sim.velocities().rowwise().squaredNorm().array()).sum();
 }
 
 }  // namespace
@@ -137,58 +133,6 @@ std::vector<cloth::Stitch> garment_stitches(const GarmentMesh& mesh) {
     return out;
 }
 
-namespace {
-
-// The welded simulation mesh of a garment: one vertex per stitched group, faces renumbered;
-// pattern coordinates stay per face corner (each panel keeps its own rest shape).
-struct Welded {
-    cloth::ClothMesh mesh;
-    std::vector<int> vertex_of;  // garment vertex -> welded vertex
-};
-
-Welded weld(const cloth::ClothMesh& source, const Eigen::MatrixX3d& positions, const Eigen::MatrixX3d& velocities,
-            const std::vector<std::array<int, 2>>& stitches, Eigen::MatrixX3d* welded_velocities) {
-    const int nv = source.vertex_count();
-    const std::vector<int> rep = detail::sewn_representatives(nv, stitches);
-    Welded w;
-    w.vertex_of.assign(size_t(nv), -1);
-    int n = 0;
-    for (int v = 0; v < nv; ++v)
-        if (rep[size_t(v)] == v) w.vertex_of[size_t(v)] = n++;
-    for (int v = 0; v < nv; ++v) w.vertex_of[size_t(v)] = w.vertex_of[size_t(rep[size_t(v)])];
-    Eigen::MatrixX3d x = Eigen::MatrixX3d::Zero(n, 3), vel = Eigen::MatrixX3d::Zero(n, 3);
-    Eigen::VectorXd count = Eigen::VectorXd::Zero(n);
-    for (int v = 0; v < nv; ++v) {
-        const int k = w.vertex_of[size_t(v)];
-        x.row(k) += positions.row(v);
-        vel.row(k) += velocities.row(v);
-        count(k) += 1;
-    }
-    for (int k = 0; k < n; ++k) {
-        x.row(k) /= count(k);
-        vel.row(k) /= count(k);
-    }
-    w.mesh.positions = x;
-    w.mesh.faces = source.faces;
-    for (Eigen::Index f = 0; f < w.mesh.faces.rows(); ++f)
-        for (int c = 0; c < 3; ++c) w.mesh.faces(f, c) = w.vertex_of[size_t(source.faces(f, c))];
-    w.mesh.pattern = source.pattern;
-    w.mesh.pattern_faces = source.pattern_faces;
-    *welded_velocities = vel;
-    return w;
-}
-
-// Body state at time t of a path spread evenly over `duration` (piecewise linear).
-Eigen::MatrixX3d body_at(const std::vector<Eigen::MatrixX3d>& path, double t, double duration) {
-    if (path.size() == 1 || t >= duration) return path.back();
-    const double u = std::max(0.0, t / duration) * double(path.size() - 1);
-    const size_t k = std::min(size_t(u), path.size() - 2);
-    const double a = u - double(k);
-    return (1 - a) * path[k] + a * path[k + 1];
-}
-
-}  // namespace
-
 DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
                            const Eigen::MatrixX3d& body_vertices, const Eigen::MatrixX3i& body_faces,
                            const cloth::Material& material, const DrapeOptions& options,
@@ -212,225 +156,12 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
                            const std::vector<cloth::Material>& materials, const std::vector<int>& face_material,
                            const DrapeOptions& options, Eigen::MatrixX3d& out_positions) {
     const auto start = std::chrono::steady_clock::now();
-    std::string why;
-    require(options.is_valid(&why), "drape_garment: ", why);
-    require(!materials.empty(), "drape_garment: no material given");
-    for (size_t k = 0; k < materials.size(); ++k)
-        require(materials[k].is_valid(&why), "drape_garment: material ", k, ": ", why);
-    require(face_material.size() == size_t(mesh.cloth.face_count()), "drape_garment: face_material has ",
-            face_material.size(), " entries, the garment mesh has ", mesh.cloth.face_count(), " faces");
-    for (size_t f = 0; f < face_material.size(); ++f)
-        require(face_material[f] >= 0 && size_t(face_material[f]) < materials.size(), "drape_garment: face_material[",
-                f, "] = ", face_material[f], " is out of range [0, ", materials.size(), ")");
-    const int nv = mesh.cloth.vertex_count();
-    require(nv > 0, "drape_garment: the garment mesh is empty");
-    require(initial_positions.rows() == nv && initial_positions.allFinite(), "drape_garment: initial_positions has ",
-            initial_positions.rows(), " rows (need ", nv, ", all finite)");
-    require(!body_path.empty(), "drape_garment: the body path is empty");
-    for (size_t k = 0; k < body_path.size(); ++k)
-        require(body_path[k].rows() == body_path[0].rows() && body_path[k].allFinite(), "drape_garment: body state ",
-                k, " of the path has ", body_path[k].rows(), " vertices (need ", body_path[0].rows(),
-                ", all finite)");
-
-    cloth::ClothMesh cm = mesh.cloth;
-    cm.positions = initial_positions;
-    // Welding and the twin simulators below keep the faces, so face_material holds for all.
-    cloth::Simulator sim(std::move(cm), materials, face_material, options.simulator);
-    sim.set_obstacle(cloth::Obstacle(body_path.front(), body_faces));
-    sim.set_stitches(garment_stitches(mesh));
-    // Garment vertex -> simulation vertex (the identity until the seams are welded).
-    std::vector<int> sim_vertex(static_cast<size_t>(nv));
-    for (int v = 0; v < nv; ++v) sim_vertex[size_t(v)] = v;
-    const auto garment_positions = [&](const Eigen::MatrixX3d& x) {
-        Eigen::MatrixX3d out(nv, 3);
-        for (int v = 0; v < nv; ++v) out.row(v) = x.row(sim_vertex[size_t(v)]);
-        return out;
-    };
-
-    DrapeSummary summary;
-    summary.vertices = nv;
-    summary.stitches = int(mesh.stitches.size());
-    summary.penetration_tolerance_m = options.penetration_tolerance_m;
-    summary.max_mean_drop_m = options.max_mean_drop_m;
-    summary.seam_gap_tolerance_m = options.seam_gap_tolerance_m;
-    const double total_mass = sim.masses().sum();
-    summary.mass_kg = total_mass;
-    {
-        const cloth::ContactReport r0 = sim.contact_report();
-        summary.initial_penetration_max_m = r0.max_penetration_m;
-        summary.initial_seam_gap_max_m = r0.max_stitch_gap_m;
-        summary.initial_self_intersections = r0.self_intersections;
-    }
-    std::string notes;
-    const bool moving = body_path.size() > 1;
-    int motion_steps = 0;  // steps of the body motion taken
-    // The body moves over body_motion_s, slower if needed so that no body vertex moves more
-    // than half the contact thickness in a step (a faster surface can pass through a cloth
-    // vertex within one step and push it out on the wrong side).
-    int motion_total = 0;
-    double motion_s = options.body_motion_s;
-    if (moving) {
-        Eigen::VectorXd travelled = Eigen::VectorXd::Zero(body_path[0].rows());
-        for (size_t k = 1; k < body_path.size(); ++k)
-            travelled += (body_path[k] - body_path[k - 1]).rowwise().norm();
-        const double per_step = 0.5 * options.simulator.contact_thickness_m;
-        motion_total = std::max({1, int(std::ceil(options.body_motion_s / options.simulator.time_step_s)),
-                                 int(std::ceil(travelled.maxCoeff() / per_step))});
-        motion_s = motion_total * options.simulator.time_step_s;
-    }
-    bool weld_tried = false;
-
-    // Welds the stitched vertices of the simulation (seams closed).
-    auto weld_now = [&]() {
-        weld_tried = true;
-        Eigen::MatrixX3d v;
-        Welded w = weld(mesh.cloth, sim.positions(), sim.velocities(), mesh.stitches, &v);
-        try {
-            w.mesh.validate();
-        } catch (const InvalidInput& e) {
-            notes += std::string(notes.empty() ? "" : "; ") + "seams not welded (" + e.what() + ")";
-            return;
-        }
-        cloth::Simulator next(std::move(w.mesh), materials, face_material, options.simulator);
-        next.set_obstacle(*sim.obstacle());
-        next.set_velocities(v);
-        sim = std::move(next);
-        sim_vertex = w.vertex_of;
-        summary.welded = true;
-        summary.steps_to_weld = summary.steps;
-    };
-
-    // Steps until the seams are closed, the body has reached the end of its path and the
-    // cloth is at rest (or `budget` runs out). Returns false when a step failed or the
-    // caller cancelled (summary says which).
-    bool settled = false;
-    Eigen::MatrixX3d progress_positions;
-    auto run_steps = [&](int budget, int min_steps, DrapePhase phase) {
-        settled = false;
-        for (int k = 0; k < budget; ++k) {
-            // The body moves once the seams are closed.
-            const bool in_motion = moving && motion_steps < motion_total && summary.steps_to_close_seams >= 0;
-            if (in_motion) {
-                ++motion_steps;
-                sim.move_obstacle(body_at(body_path, motion_steps * options.simulator.time_step_s, motion_s));
-            }
-            const cloth::StepSummary s = sim.step();
-            if (!s.usable()) {
-                summary.termination = DrapeTermination::step_failed;
-                summary.message = "step " + std::to_string(summary.steps + 1) + ": " + s.brief_report();
-                return false;
-            }
-            ++summary.steps;
-            const double ke = kinetic_energy(sim);
-            summary.kinetic_energy_j = ke;
-            const bool closed = s.max_stitch_gap_m < options.seam_gap_tolerance_m;
-            if (closed && summary.steps_to_close_seams < 0) summary.steps_to_close_seams = summary.steps;
-            if (closed && options.weld_seams && !weld_tried && !sim.stitches().empty()) weld_now();
-            const DrapePhase reported = in_motion ? DrapePhase::moving_body
-                                        : closed && phase == DrapePhase::closing_seams ? DrapePhase::settling
-                                                                                        : phase;
-            if (options.on_progress) progress_positions = garment_positions(sim.positions());
-            if (options.on_progress && !options.on_progress({reported, summary.steps, s.max_stitch_gap_m, ke, s.newton_iterations,
-                                                         s.seconds_total, &progress_positions})) {
-                summary.termination = DrapeTermination::cancelled;
-                summary.message = "cancelled at step " + std::to_string(summary.steps);
-                return false;
-            }
-            const bool body_done = !moving || motion_steps >= motion_total;
-            if (k + 1 >= min_steps && closed && body_done && ke / total_mass < options.settled_kinetic_energy_j_per_kg) {
-                settled = true;
-                return true;
-            }
-        }
-        return true;
-    };
-    if (summary.initial_self_intersections > 0 && options.max_untangle_steps > 0) {
-        cloth::SimulatorOptions loose = options.simulator;
-        loose.self_contact = false;
-        cloth::ClothMesh m0 = sim.mesh();
-        m0.positions = initial_positions;
-        cloth::Simulator untangle(std::move(m0), materials, face_material, loose);
-        untangle.set_obstacle(*sim.obstacle());
-        untangle.set_stitches(sim.stitches());
-        while (summary.untangle_steps < options.max_untangle_steps) {
-            const cloth::StepSummary s = untangle.step();
-            if (!s.usable()) break;
-            ++summary.untangle_steps;
-            if (options.on_progress &&
-                !options.on_progress({DrapePhase::closing_seams, summary.untangle_steps, s.max_stitch_gap_m,
-                                      kinetic_energy(untangle), s.newton_iterations, s.seconds_total,
-                                      &untangle.positions()})) {
-                summary.termination = DrapeTermination::cancelled;
-                summary.message = "cancelled while untangling";
-                summary.steps = summary.untangle_steps;
-                out_positions = untangle.positions();
-                return summary;
-            }
-            if (summary.untangle_steps % 5 == 0 && untangle.contact_report().self_intersections == 0) break;
-        }
-        summary.steps = summary.untangle_steps;
-        sim.set_positions(untangle.positions());
-        sim.set_velocities(untangle.velocities());
-    }
-    bool ok = run_steps(options.max_steps, options.min_steps, DrapePhase::closing_seams);
-    if (ok) {
-        summary.termination = settled ? DrapeTermination::converged : DrapeTermination::not_settled;
-        if (!settled) summary.message = "seams not closed or cloth not at rest after " + std::to_string(summary.steps) + " steps";
-    }
-    if (ok && settled && options.static_solve) {
-        const Eigen::MatrixX3d before = sim.positions();
-        // The static solve gets its own Newton budget: a twin simulator at the settled state.
-        cloth::SimulatorOptions static_options = options.simulator;
-        static_options.max_newton_iterations = options.static_max_newton_iterations;
-        cloth::ClothMesh settled_mesh = sim.mesh();
-        settled_mesh.positions = before;
-        cloth::Simulator twin(std::move(settled_mesh), materials, face_material, static_options);
-        twin.set_obstacle(*sim.obstacle());
-        twin.set_stitches(sim.stitches());
-        const cloth::StepSummary s = twin.solve_static();
-        summary.static_gradient_n = s.gradient_inf_norm_n;
-        summary.static_newton_iterations = s.newton_iterations;
-        const cloth::ContactReport r = twin.contact_report();
-        const bool good = s.termination == cloth::StepTermination::converged &&
-                          r.max_penetration_m <= options.penetration_tolerance_m &&
-                          r.max_stitch_gap_m < options.seam_gap_tolerance_m && r.self_intersections == 0;
-        if (good) {
-            sim.set_positions(twin.positions());
-            sim.set_velocities(Eigen::MatrixX3d::Zero(sim.positions().rows(), 3));
-        } else {
-            // Equilibrium by stepping instead, from the settled state.
-            const std::string reason = "static solve: " + s.brief_report() + ", penetration " +
-                                       std::to_string(1000 * r.max_penetration_m) + " mm, " +
-                                       std::to_string(r.self_intersections) + " self-intersections";
-            sim.set_positions(before);
-            sim.set_velocities(Eigen::MatrixX3d::Zero(sim.positions().rows(), 3));
-            ok = run_steps(options.fallback_steps, 1, DrapePhase::static_solve);
-            if (ok) {
-                summary.termination = settled ? DrapeTermination::converged : DrapeTermination::static_failed;
-                summary.message = reason + (settled ? "; equilibrium reached by stepping instead" : "");
-            }
-        }
-    }
-
-    const cloth::ContactReport r = sim.contact_report();
-    summary.seam_gap_max_m = r.max_stitch_gap_m;
-    summary.penetration_max_m = r.max_penetration_m;
-    summary.vertices_inside = r.vertices_inside;
-    summary.self_intersections = r.self_intersections;
-    summary.converged = summary.termination == DrapeTermination::converged;
-    out_positions = garment_positions(sim.positions());
-    {
-        const Eigen::Vector3d g = options.simulator.gravity_m_per_s2;
-        const Eigen::Vector3d down = g.norm() > 0 ? Eigen::Vector3d(g.normalized()) : Eigen::Vector3d(0, -1, 0);
-        const double garment_sink = ((out_positions - initial_positions) * down).mean();
-        const double body_sink = ((body_path.back() - body_path.front()) * down).mean();
-        summary.mean_drop_m = garment_sink - body_sink;
-        if (summary.mean_drop_m > options.max_mean_drop_m)
-            notes += std::string(notes.empty() ? "" : "; ") + "the garment slid down the body: its vertices sank " +
-                     std::to_string(100 * summary.mean_drop_m) + " cm on average (at most " +
-                     std::to_string(100 * options.max_mean_drop_m) + " cm)";
-    }
-    if (!notes.empty()) summary.message += (summary.message.empty() ? "" : "; ") + notes;
+    detail::check_drape_inputs(mesh, initial_positions, body_path, materials, face_material, options);
+    detail::DrapeRun run(mesh, initial_positions, body_path, body_faces, materials, face_material, options);
+    if (!run.untangle(out_positions)) return run.summary();  // cancelled
+    if (run.close_seams_and_settle() && run.settled() && options.static_solve) run.solve_static();
+    run.measure(out_positions);
+    DrapeSummary summary = run.summary();
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
 }

@@ -3,17 +3,17 @@
 #include <drape/garment/sizing_proposal.hpp>
 
 #include "dressing_internal.hpp"
+#include "dressing_stages.hpp"
 
 #include <drape/core/closest_point_triangle.hpp>
 #include <drape/core/point_in_mesh.hpp>
-#include <drape/core/vertex_normals.hpp>
 
 #include <drape/cloth/intersections.hpp>
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
 
 #include <Eigen/SVD>
-#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <chrono>
@@ -28,12 +28,10 @@
 
 namespace drape::garment {
 
-namespace {
+namespace detail {
 
 using body::Joint;
 using body::index;
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kStitchWeight = 20.0;  // ARAP weight of a stitch relative to a cloth edge
 
 // Nearest body vertex (brute force over the body, parallel-free and exact).
 int nearest_vertex(const Eigen::MatrixXd& V, const Eigen::Vector3d& p) {
@@ -46,70 +44,6 @@ int nearest_vertex(const Eigen::MatrixXd& V, const Eigen::Vector3d& p) {
     return best;
 }
 
-// As-rigid-as-possible deformation (uniform weights) from rest shape X0 towards soft
-// positional targets; `iterations` local/global rounds starting from X.
-void arap(const Eigen::MatrixX3d& X0, const std::vector<std::array<int, 2>>& edges,
-          const std::vector<double>& edge_weight, const std::vector<bool>& zero_rest,
-          const std::vector<int>& targets_index, const Eigen::MatrixX3d& targets, double weight,
-          int iterations, Eigen::MatrixX3d& X) {
-    const int n = static_cast<int>(X0.rows());
-    struct Nbr {
-        int j;
-        double w;
-        double rest;  // 1: rest edge from X0; 0: the edge's rest length is zero (a stitch)
-    };
-    std::vector<std::vector<Nbr>> nbr(n);
-    for (size_t k = 0; k < edges.size(); ++k) {
-        const double rest = zero_rest[k] ? 0.0 : 1.0;
-        nbr[edges[k][0]].push_back({edges[k][1], edge_weight[k], rest});
-        nbr[edges[k][1]].push_back({edges[k][0], edge_weight[k], rest});
-    }
-    std::vector<Eigen::Triplet<double>> trip;
-    for (int i = 0; i < n; ++i)
-        for (const Nbr& e : nbr[i]) {
-            trip.emplace_back(i, i, e.w);
-            trip.emplace_back(i, e.j, -e.w);
-        }
-    // A weak pull towards the starting positions keeps panels without targets in place
-    // (the Laplacian alone leaves each panel's translation free).
-    constexpr double kAnchor = 0.01;
-    for (int i = 0; i < n; ++i) trip.emplace_back(i, i, kAnchor);
-    for (int i : targets_index) trip.emplace_back(i, i, weight);
-    Eigen::SparseMatrix<double> A(n, n);
-    A.setFromTriplets(trip.begin(), trip.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
-    if (solver.info() != Eigen::Success) return;
-    const Eigen::MatrixX3d start = X;
-    std::vector<Eigen::Matrix3d> R(n, Eigen::Matrix3d::Identity());
-    for (int it = 0; it < iterations; ++it) {
-        for (int i = 0; i < n; ++i) {
-            Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-            for (const Nbr& e : nbr[i])
-                S += e.w * e.rest * (X0.row(i) - X0.row(e.j)).transpose() * (X.row(i) - X.row(e.j));
-            Eigen::JacobiSVD<Eigen::Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
-            Eigen::Matrix3d r = svd.matrixV() * svd.matrixU().transpose();
-            if (r.determinant() < 0) {
-                Eigen::Matrix3d v = svd.matrixV();
-                v.col(2) *= -1;
-                r = v * svd.matrixU().transpose();
-            }
-            R[i] = r;
-        }
-        Eigen::MatrixX3d b = kAnchor * start;
-        for (int i = 0; i < n; ++i)
-            for (const Nbr& e : nbr[i])
-                b.row(i) += (0.5 * e.w * e.rest * (R[i] + R[e.j]) * (X0.row(i) - X0.row(e.j)).transpose()).transpose();
-        for (size_t k = 0; k < targets_index.size(); ++k)
-            b.row(targets_index[k]) += weight * targets.row(Eigen::Index(k));
-        X = solver.solve(b);
-    }
-}
-
-constexpr double kSoftM = 0.01;     // soft zone of the radial placement (AxisEnvelope::push)
-constexpr double kLayerGapM = 0.006;  // sleeve kept this far outside the torso panels
-constexpr double kSleeveOffsetM = 0.04;     // sleeve caps start at least this far down the arm
-constexpr double kMaxSleeveOffsetM = 0.15;  // and at most this far
-
 bool arm_joint(int j) {
     for (Joint a : {Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist, Joint::right_shoulder,
                     Joint::right_elbow, Joint::right_wrist})
@@ -117,24 +51,6 @@ bool arm_joint(int j) {
     return false;
 }
 
-// Whether the body part of joint j is one a panel of this role must stay outside of: a
-// forearm or hand resting on the hip (arms down) is not something pants go around, and
-// torso panels only avoid the upper arm.
-bool obstacle_for(detail::Role role, int j) {
-    if (role == detail::Role::sleeve || role == detail::Role::hint) return true;
-    if (role == detail::Role::torso)
-        return !(j == index(Joint::left_elbow) || j == index(Joint::left_wrist) ||
-                 j == index(Joint::right_elbow) || j == index(Joint::right_wrist));
-    return !arm_joint(j);
-}
-
-// Radial placement of the skinned garment outside the posed body. Torso, skirt and the
-// pants' pelvis part are moved away from the trunk axis (pelvis-spine-chest-neck), outside
-// the envelope of the trunk and leg vertices; pants legs away from their leg axis, outside
-// that leg, and kept on their side of the body's mid-plane; sleeves are then wrapped anew
-// around the posed arms (cap on the placed armhole), moved outside the arm and outside the
-// torso panels. Radial moves keep each point's angle and height about its axis, so
-// layers that do not cross do not start crossing.
 // Moves the vertices from X towards `to` one at a time, keeping a move only if it does not
 // increase the number of intersecting triangle pairs at the moved vertex (stitched
 // partners count as one vertex, as the simulator counts them); rejected moves are retried
@@ -223,6 +139,22 @@ int guarded_moves(const GarmentMesh& mesh, const Eigen::MatrixX3d& to, Eigen::Ma
     return not_moved;
 }
 
+}  // namespace detail
+
+namespace {
+
+using body::Joint;
+using body::index;
+using detail::arm_joint;
+using detail::guarded_moves;
+constexpr double kPi = 3.14159265358979323846;
+
+constexpr double kSoftM = 0.01;     // soft zone of the radial placement (AxisEnvelope::push)
+constexpr double kLayerGapM = 0.006;  // sleeve kept this far outside the torso panels
+constexpr double kSleeveOffsetM = 0.04;     // sleeve caps start at least this far down the arm
+constexpr double kMaxSleeveOffsetM = 0.15;  // and at most this far
+
+
 constexpr double kArmholeBlendCm = 8.0;  // torso panels follow their armhole this far in
 
 // Opens each armhole into a loop around its arm root. Wrapped on the torso ellipse, a torso
@@ -297,6 +229,13 @@ void open_armholes(const Pattern& pattern, const GarmentMesh& mesh, const body::
     X += move;
 }
 
+// Radial placement of the skinned garment outside the posed body. Torso, skirt and the
+// pants' pelvis part are moved away from the trunk axis (pelvis-spine-chest-neck), outside
+// the envelope of the trunk and leg vertices; pants legs away from their leg axis, outside
+// that leg, and kept on their side of the body's mid-plane; sleeves are then wrapped anew
+// around the posed arms (cap on the placed armhole), moved outside the arm and outside the
+// torso panels. Radial moves keep each point's angle and height about its axis, so
+// layers that do not cross do not start crossing.
 void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
                         const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
                         const Eigen::VectorXd& pelvis_weight, double clearance, Eigen::MatrixX3d& X) {
@@ -589,14 +528,11 @@ Eigen::Isometry3d rigid_align(const Eigen::MatrixX3d& q, const Eigen::MatrixX3d&
     return T;
 }
 
-namespace {
+namespace detail {
 
-// dress_garment with `placement_passes` guarded passes of the radial placement (step 3).
-DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mesh,
-                                  const body::BodyModel& model, const body::ShapedBody& shaped,
-                                  const body::Pose& pose, const DressingOptions& options,
-                                  int placement_passes, Eigen::MatrixX3d& positions) {
-    const auto t0 = std::chrono::steady_clock::now();
+void check_dressing_inputs(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
+                           const body::ShapedBody& shaped, const body::Pose& pose,
+                           const DressingOptions& options) {
     std::string why;
     require(options.is_valid(&why), "dress_garment: ", why);
     require(pose.is_valid(&why), "dress_garment: pose: ", why);
@@ -610,13 +546,16 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         require(mesh.panel_of_vertex(v) >= 0 && mesh.panel_of_vertex(v) < int(pattern.panels.size()),
                 "dress_garment: mesh vertex ", v, " names panel ", mesh.panel_of_vertex(v),
                 " not in the pattern");
-    DressingSummary summary;
+}
 
-    // 1. The garment template lives in its own frame (root joint at the origin); T aligns
-    //    its skeleton Q_c with the body's rest joints Q_h.
-    const detail::Joints& rest = shaped.joints;
+// The garment template lives in its own frame (root joint at the origin); T aligns its
+// skeleton Q_c with the body's rest joints Q_h.
+WrappedGarment wrap_on_rest_body(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
+                                 const body::ShapedBody& shaped, const std::vector<int>& dominant) {
+    WrappedGarment wrapped;
+    const Joints& rest = shaped.joints;
     const Eigen::RowVector3d root = rest.row(index(Joint::pelvis));
-    const detail::Joints garment_joints = rest.rowwise() - root;
+    const Joints garment_joints = rest.rowwise() - root;
     const std::vector<Joint> skeleton = garment_skeleton_joints(pattern);
     Eigen::MatrixX3d q(skeleton.size(), 3), t(skeleton.size(), 3);
     for (size_t i = 0; i < skeleton.size(); ++i) {
@@ -624,15 +563,13 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         t.row(Eigen::Index(i)) = rest.row(index(skeleton[i]));
     }
     const Eigen::Isometry3d T = rigid_align(q, t);
-    summary.alignment_rms_m = std::sqrt(((T * q.transpose()).transpose() - t).rowwise().squaredNorm().mean());
+    wrapped.alignment_rms_m = std::sqrt(((T * q.transpose()).transpose() - t).rowwise().squaredNorm().mean());
     // Torso sections of the rest body (garment frame), in 1 cm height bins: bounding-box
     // half extents of the vertices skinned mainly to the trunk joints.
     const Eigen::MatrixXd rest_local = shaped.vertices.rowwise() - root;
     const double y_lo = rest_local.col(1).minCoeff(), bin = 0.01;
     const int nbins = int(std::ceil((rest_local.col(1).maxCoeff() - y_lo) / bin)) + 1;
     std::vector<Eigen::Vector4d> box(size_t(nbins), Eigen::Vector4d(1e300, -1e300, 1e300, -1e300));
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
-    const std::vector<int> dominant = body::dominant_joints(model);  // joint of the largest weight
     {
         const std::set<int> trunk = {index(Joint::pelvis), index(Joint::spine), index(Joint::chest),
                                      index(Joint::neck), index(Joint::left_clavicle),
@@ -667,27 +604,31 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     // section + ease (skirt_waistband) started stretched over a belly wider than it, and its
     // waistband then cut into it (docs/dressing.md).
     double skirt_waist_y = std::numeric_limits<double>::quiet_NaN();
-    if (detail::is_skirt(pattern)) {
+    if (is_skirt(pattern)) {
         double waist_cm = 0;
         for (size_t p = 0; p < pattern.panels.size(); ++p)
-            if (const int e = detail::waist_edge(pattern, p); e >= 0) waist_cm += pattern.panels[p].edges[size_t(e)].length();
+            if (const int e = waist_edge(pattern, p); e >= 0) waist_cm += pattern.panels[p].edges[size_t(e)].length();
         const double y = skirt_waist_fit(model, shaped, 0.01 * waist_cm).height_m;
         skirt_waist_y = y - root.y();
-        summary.skirt_waist_drop_m = rest(index(Joint::spine), 1) - y;
+        wrapped.skirt_waist_drop_m = rest(index(Joint::spine), 1) - y;
     }
-    Eigen::VectorXd pelvis_weight;
-    Eigen::MatrixX3d X = detail::wrap_panels(pattern, mesh, garment_joints, torso_section, &pelvis_weight, nullptr,
-                                             kSleeveOffsetM, skirt_waist_y);
-    X = (T * X.transpose()).transpose();
+    wrapped.positions = wrap_panels(pattern, mesh, garment_joints, torso_section, &wrapped.pelvis_weight, nullptr,
+                                    kSleeveOffsetM, skirt_waist_y);
+    wrapped.positions = (T * wrapped.positions.transpose()).transpose();
+    return wrapped;
+}
 
-    // 2. Linear blend skinning with the weights of the nearest rest body vertex.
-    const body::PosedSkeleton skel = body::forward_kinematics(rest, pose);
-    // Each panel takes its weights from the nearest body vertex that is skinned mainly to
-    // one of the panel's joints (detail::skinning_joints), restricted to those joints.
+// Each panel takes its weights from the nearest body vertex that is skinned mainly to one
+// of the panel's joints (skinning_joints), restricted to those joints.
+void skin_to_pose(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
+                  const body::ShapedBody& shaped, const body::PosedSkeleton& skel,
+                  const std::vector<int>& dominant, const Eigen::VectorXd& pelvis_weight, Eigen::MatrixX3d& X) {
+    const int nv = mesh.cloth.vertex_count();
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> W = model.skin_weights;
     std::vector<Eigen::MatrixXd> candidates(pattern.panels.size());
     std::vector<std::vector<int>> candidate_ids(pattern.panels.size()), allowed(pattern.panels.size());
     for (size_t p = 0; p < pattern.panels.size(); ++p) {
-        allowed[p] = detail::skinning_joints(pattern, int(p));
+        allowed[p] = skinning_joints(pattern, int(p));
         for (Eigen::Index b = 0; b < shaped.vertices.rows(); ++b)
             if (allowed[p].empty() || std::count(allowed[p].begin(), allowed[p].end(), dominant[size_t(b)]))
                 candidate_ids[p].push_back(int(b));
@@ -715,138 +656,41 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         // The pants' pelvis part moves with the pelvis alone (blended into the legs over the
         // crotch), so the two legs do not drag the crotch across each other in a stride.
         const double pw = pelvis_weight(v);
-        if (detail::role_of(pattern, panel) == detail::Role::leg)
+        if (role_of(pattern, panel) == Role::leg)
             p = pw * (skel.skinning[size_t(index(Joint::pelvis))] * Eigen::Vector3d(X.row(v).transpose())) + (1 - pw) * p;
         X.row(v) = p.transpose();
     }
+}
 
-    // 3. Radial placement outside the posed body (see place_outside_body), then the
-    //    sleeves on the posed arms around the placed torso.
-    const Eigen::MatrixXd body_v = body::pose_body(model, shaped, pose).vertices;
-    const Eigen::MatrixXd body_n = core::vertex_normals(body_v, model.faces);  // area-weighted
-    {
-        Eigen::MatrixX3d placed = X;
-        place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, options.clearance_m, placed);
-        // Sleeves are placed anew on the posed arms (not deformed from the skinned state):
-        // they take their new places at once, the rest moves guarded.
-        for (int v = 0; v < nv; ++v)
-            if (detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))) == detail::Role::sleeve)
-                X.row(v) = placed.row(v);
-        // A vertex whose move would cross a neighbour that has not moved yet (the two sides
-        // of an armhole start on one line) gets another pass once they have (see
-        // dress_garment for how many passes a garment gets).
-        for (int pass = 0, left = nv; pass < placement_passes && left > 0; ++pass) {
-            const int now = guarded_moves(mesh, placed, X);
-            if (now >= left) break;
-            left = now;
-        }
+void place_on_posed_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
+                         const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
+                         const Eigen::VectorXd& pelvis_weight, double clearance_m, int placement_passes,
+                         Eigen::MatrixX3d& X) {
+    const int nv = mesh.cloth.vertex_count();
+    Eigen::MatrixX3d placed = X;
+    place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, clearance_m, placed);
+    // Sleeves are placed anew on the posed arms (not deformed from the skinned state):
+    // they take their new places at once, the rest moves guarded.
+    for (int v = 0; v < nv; ++v)
+        if (role_of(pattern, size_t(mesh.panel_of_vertex(v))) == Role::sleeve)
+            X.row(v) = placed.row(v);
+    // A vertex whose move would cross a neighbour that has not moved yet (the two sides
+    // of an armhole start on one line) gets another pass once they have (see
+    // dress_garment for how many passes a garment gets).
+    for (int pass = 0, left = nv; pass < placement_passes && left > 0; ++pass) {
+        const int now = guarded_moves(mesh, placed, X);
+        if (now >= left) break;
+        left = now;
     }
+}
 
-    // 4. Interpenetration removal: push offending vertices out along the body normal and
-    //    let an as-rigid-as-possible deformation carry their neighbours.
-    const core::ClosedMeshInside inside_test(body_v, model.faces);
-    // Per row of `P`: inside the posed body.
-    const auto inside_rows = [&](const Eigen::MatrixX3d& P) {
-        std::vector<bool> in(size_t(P.rows()), false);
-        for (int i : inside_test.inside_indices(P)) in[size_t(i)] = true;
-        return in;
-    };
-    // Stitched vertex pairs join the ARAP graph, so seams that wrapping closed stay closed.
-    // Stitch springs (rest length zero, stiffer than cloth edges: kStitchWeight) pull seams
-    // that wrapping or skinning opened towards closing while the garment is pushed out.
-    auto edges = detail::mesh_edges(mesh.cloth.faces);
-    std::vector<double> edge_weight(edges.size(), 1.0);
-    std::vector<bool> zero_rest(edges.size(), false);
-    const auto is_sleeve = [&](int v) {
-        return detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))) == detail::Role::sleeve;
-    };
-    for (const auto& st : mesh.stitches) {
-        // Sleeve caps start open, down the arm (kSleeveOffsetM): the simulation sews them.
-        // Pulled closed here they would drag the sleeve tube off the arm into a flap.
-        if (is_sleeve(st[0]) != is_sleeve(st[1])) continue;
-        edges.push_back({std::min(st[0], st[1]), std::max(st[0], st[1])});
-        edge_weight.push_back(kStitchWeight);
-        zero_rest.push_back(true);
-    }
-    const Eigen::MatrixX3d X0 = X;
-    for (const auto& s : mesh.stitches)
-        summary.wrapped_seam_gap_m = std::max(summary.wrapped_seam_gap_m, (X.row(s[0]) - X.row(s[1])).norm());
-    std::vector<bool> ever(size_t(nv), false), march(size_t(nv), false);
-    auto offenders = [&](std::vector<int>* ids, Eigen::MatrixX3d* targets) {
-        std::vector<std::pair<int, Eigen::Vector3d>> list;
-        const std::vector<bool> in = inside_rows(X);
-        for (int v = 0; v < nv; ++v) {
-            const Eigen::Vector3d x = X.row(v).transpose();
-            const int b = nearest_vertex(body_v, x);
-            if (!obstacle_for(detail::role_of(pattern, size_t(mesh.panel_of_vertex(v))),
-                              dominant[size_t(b)]))
-                continue;
-            const Eigen::Vector3d p = body_v.row(b).transpose(), n = body_n.row(b).transpose();
-            const double d = (x - p).dot(n);
-            if (in[size_t(v)] || d < 0.5 * options.clearance_m) {
-                // Inside the body but in front of the nearest surface: a fold (armpit, crotch)
-                // or another body part; the target is on the nearest surface, no marching.
-                const bool fold = in[size_t(v)] && d > 0;
-                march[size_t(v)] = !fold;
-                list.emplace_back(v, fold ? Eigen::Vector3d(p + options.clearance_m * n)
-                                          : Eigen::Vector3d(x + (options.clearance_m - d) * n));
-            }
-        }
-        ids->clear();
-        *targets = Eigen::MatrixX3d(Eigen::Index(list.size()), 3);
-        for (size_t k = 0; k < list.size(); ++k) {
-            ids->push_back(list[k].first);
-            targets->row(Eigen::Index(k)) = list[k].second.transpose();
-        }
-    };
-    std::vector<int> ids;
-    Eigen::MatrixX3d targets;
-    for (int it = 0; it < options.max_iterations; ++it) {
-        offenders(&ids, &targets);
-        summary.iterations = it + 1;
-        if (ids.empty()) break;
-        for (int v : ids) ever[size_t(v)] = true;
-        Eigen::MatrixX3d next = X;
-        arap(X0, edges, edge_weight, zero_rest, ids, targets, options.constraint_weight, 2, next);
-        guarded_moves(mesh, next, X);
-    }
-    // Whatever is still inside is projected onto its target (the hard constraint), marching
-    // further along the normal where the nearest-vertex target is itself inside (folds of
-    // the body such as an armpit).
-    offenders(&ids, &targets);
-    Eigen::MatrixX3d projected = X;
-    for (size_t k = 0; k < ids.size(); ++k) {
-        Eigen::Vector3d x = targets.row(Eigen::Index(k)).transpose();
-        const Eigen::Vector3d step =
-            0.005 * (x - Eigen::Vector3d(X.row(ids[k]).transpose())).normalized();
-        for (int m = 0; m < 40 && march[size_t(ids[k])] && inside_test.inside(x) && step.allFinite(); ++m) x += step;
-        projected.row(ids[k]) = x.transpose();
-    }
-    guarded_moves(mesh, projected, X);
-    // 5. Crossings that wrapping and the push-out left (folds at the neck and shoulders,
-    //    sleeves at the armpit) are separated, each side towards its own layer.
-    //    Vertices the crossings held inside the body are then pushed out (guarded moves
-    //    count crossings at a vertex's own position, not at its stitched group's, so a
-    //    sleeve cap can cross again: a second untangling follows).
-    if (options.untangle) {
-        summary.untangle = untangle_garment(mesh, body_v, model.faces, options.untangle_options, X);
-        offenders(&ids, &targets);
-        if (!ids.empty()) {
-            Eigen::MatrixX3d out = X;
-            for (size_t k = 0; k < ids.size(); ++k) out.row(ids[k]) = targets.row(Eigen::Index(k));
-            guarded_moves(mesh, out, X);
-            const UntangleSummary again = untangle_garment(mesh, body_v, model.faces, options.untangle_options, X);
-            summary.untangle.self_intersections = again.self_intersections;
-            summary.untangle.iterations += again.iterations;
-            summary.untangle.seconds += again.seconds;
-        }
-    }
-    summary.vertices_pushed = int(std::count(ever.begin(), ever.end(), true));
-    const std::vector<bool> in = inside_rows(X);
+void measure_dressed(const GarmentMesh& mesh, const Eigen::MatrixX3d& X, const Eigen::MatrixXd& body_v,
+                     const Eigen::MatrixXi& body_faces, const BodyOffenders& offenders, DressingSummary& summary) {
+    const std::vector<bool> in = offenders.inside_rows(X);
     summary.vertices_inside = int(std::count(in.begin(), in.end(), true));
     for (const auto& s : mesh.stitches)
         summary.max_seam_gap_m = std::max(summary.max_seam_gap_m, (X.row(s[0]) - X.row(s[1])).norm());
-    const GarmentStateCheck check = check_garment_state(mesh, X, body_v, model.faces);
+    const GarmentStateCheck check = check_garment_state(mesh, X, body_v, body_faces);
     summary.self_intersections = check.self_intersections;
     summary.max_penetration_m = check.max_penetration_m;
     summary.min_layer_distance_m = check.min_layer_distance_m;
@@ -854,6 +698,50 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
         summary.termination = DressingTermination::penetration_left;
         summary.message = std::to_string(summary.vertices_inside) + " garment vertices remain inside the body";
     }
+}
+
+}  // namespace detail
+
+namespace {
+
+// dress_garment with `placement_passes` guarded passes of the radial placement (stage 3).
+DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mesh,
+                                  const body::BodyModel& model, const body::ShapedBody& shaped,
+                                  const body::Pose& pose, const DressingOptions& options,
+                                  int placement_passes, Eigen::MatrixX3d& positions) {
+    const auto t0 = std::chrono::steady_clock::now();
+    detail::check_dressing_inputs(pattern, mesh, model, shaped, pose, options);
+    DressingSummary summary;
+    const std::vector<int> dominant = body::dominant_joints(model);  // joint of the largest weight
+
+    // 1. Rigid alignment of the garment wrapped in its own frame with the rest body.
+    detail::WrappedGarment wrapped = detail::wrap_on_rest_body(pattern, mesh, model, shaped, dominant);
+    summary.alignment_rms_m = wrapped.alignment_rms_m;
+    summary.skirt_waist_drop_m = wrapped.skirt_waist_drop_m;
+    Eigen::MatrixX3d X = std::move(wrapped.positions);
+
+    // 2. Linear blend skinning with the weights of the nearest rest body vertex.
+    const body::PosedSkeleton skel = body::forward_kinematics(shaped.joints, pose);
+    detail::skin_to_pose(pattern, mesh, model, shaped, skel, dominant, wrapped.pelvis_weight, X);
+
+    // 3. Radial placement outside the posed body (see place_outside_body), then the
+    //    sleeves on the posed arms around the placed torso.
+    const Eigen::MatrixXd body_v = body::pose_body(model, shaped, pose).vertices;
+    detail::place_on_posed_body(pattern, mesh, skel, body_v, dominant, wrapped.pelvis_weight, options.clearance_m,
+                                placement_passes, X);
+
+    // 4. Interpenetration removal.
+    detail::BodyOffenders offenders(pattern, mesh, body_v, model.faces, dominant, options.clearance_m);
+    const detail::PushOutResult pushed = detail::push_out_of_body(pattern, mesh, options, offenders, X);
+    summary.iterations = pushed.iterations;
+    summary.vertices_pushed = pushed.vertices_pushed;
+    summary.wrapped_seam_gap_m = pushed.wrapped_seam_gap_m;
+
+    // 5. Untangling of the crossings left.
+    if (options.untangle)
+        summary.untangle = detail::untangle_and_push_out(mesh, body_v, model.faces, options, offenders, X);
+
+    detail::measure_dressed(mesh, X, body_v, model.faces, offenders, summary);
     positions = X;
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return summary;

@@ -1,0 +1,80 @@
+// The phases of drape_garment (not installed): drape_garment.cpp calls them in order.
+#pragma once
+
+#include <drape/cloth/simulator.hpp>
+#include <drape/garment/drape_garment.hpp>
+#include <drape/garment/garment_mesh.hpp>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace drape::garment::detail {
+
+/// Throws drape::InvalidInput unless the options, materials, per-face materials, initial
+/// positions (#V x 3) and body path (each #B x 3) fit the garment mesh.
+void check_drape_inputs(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+                        const std::vector<Eigen::MatrixX3d>& body_path, const std::vector<cloth::Material>& materials,
+                        const std::vector<int>& face_material, const DrapeOptions& options);
+
+/// One drape of a garment: the simulator with the body as obstacle and the garment's
+/// stitches, and the summary so far. The arguments must outlive it.
+class DrapeRun {
+public:
+    /// Set-up: the simulator at the dressed state, its stitches, the dressed state's contact
+    /// report and the schedule of the body's motion along its path.
+    DrapeRun(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+             const std::vector<Eigen::MatrixX3d>& body_path, const Eigen::MatrixX3i& body_faces,
+             const std::vector<cloth::Material>& materials, const std::vector<int>& face_material,
+             const DrapeOptions& options);
+
+    /// A dressed state that intersects itself is stepped without self-contact until it does
+    /// not (at most DrapeOptions::max_untangle_steps). Returns false when the caller
+    /// cancelled; out_positions (#V x 3) then holds the state reached.
+    bool untangle(Eigen::MatrixX3d& out_positions);
+
+    /// Steps while the seams close (welded once closed), the body moves along its path and
+    /// the cloth settles; sets the termination. Returns false when a step failed or the
+    /// caller cancelled.
+    bool close_seams_and_settle();
+
+    /// Whether the last stepping ended at rest.
+    bool settled() const { return settled_; }
+
+    /// The static solve from the settled state on a twin simulator, kept if it converged
+    /// cleanly; else equilibrium by stepping (DrapeOptions::fallback_steps).
+    void solve_static();
+
+    /// The final measurements into the summary; out_positions (#V x 3) the garment's.
+    void measure(Eigen::MatrixX3d& out_positions);
+
+    const DrapeSummary& summary() const { return summary_; }
+
+private:
+    bool run_steps(int budget, int min_steps, DrapePhase phase);
+    void weld_now();
+    Eigen::MatrixX3d garment_positions(const Eigen::MatrixX3d& x) const;
+
+    const GarmentMesh& mesh_;
+    const Eigen::MatrixX3d& initial_positions_;
+    const std::vector<Eigen::MatrixX3d>& body_path_;
+    const std::vector<cloth::Material>& materials_;
+    const std::vector<int>& face_material_;
+    const DrapeOptions& options_;
+    int nv_;
+    cloth::Simulator sim_;
+    std::vector<int> sim_vertex_;  // garment vertex -> simulation vertex (identity until welded)
+    DrapeSummary summary_;
+    double total_mass_ = 0;
+    std::string notes_;
+    bool moving_ = false;
+    int motion_steps_ = 0;  // steps of the body motion taken
+    int motion_total_ = 0;
+    double motion_s_ = 0;
+    bool weld_tried_ = false;
+    bool settled_ = false;
+    Eigen::MatrixX3d progress_positions_;
+};
+
+}  // namespace drape::garment::detail
