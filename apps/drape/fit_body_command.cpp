@@ -122,24 +122,8 @@ void run_fit_body(const FitArgs& args) {
     std::cerr << "drape fit-body: " << summary.brief_report() << "\n";
     if (!summary.usable()) throw std::runtime_error(summary.brief_report());
 
+    const body::FitQuality quality = body::fit_quality(model, in, fit, summary);
     const body::ShapedBody shaped = body::shape_from_coefficients(model, fit.coefficients);
-    const body::PosedBody posed = body::pose_body(model, shaped, fit.pose);
-    const body::Mask silhouette =
-        body::render_silhouette(posed.vertices, model.faces, fit.camera, photo.cols, photo.rows);
-
-    // Quality figures (docs/body-fitting.md): person height = head-top joint to the lower ankle.
-    int inter = 0, uni = 0, skin_total = 0, skin_covered = 0;
-    for (size_t i = 0; i < silhouette.pixels.size(); ++i) {
-        const bool b = silhouette.pixels[i] != 0, p = in.person.pixels[i] != 0;
-        inter += b && p;
-        uni += b || p;
-        if (!in.skin.pixels.empty() && in.skin.pixels[i]) {
-            ++skin_total;
-            skin_covered += b;
-        }
-    }
-    const double height_px =
-        std::max(in.joints_px(0, 1), in.joints_px(5, 1)) - in.joints_px(13, 1);
 
     nlohmann::json j;
     j["format"] = "drape.body_fit";
@@ -163,15 +147,15 @@ void run_fit_body(const FitArgs& args) {
                 {"iterations", summary.iterations},
                 {"seconds", summary.seconds},
                 {"mean_joint_error_px", summary.mean_joint_error_px},
-                {"person_height_px", height_px},
-                {"mean_joint_error_percent", 100.0 * summary.mean_joint_error_px / std::max(1.0, height_px)},
-                {"person_iou", uni > 0 ? double(inter) / uni : 0.0}};
-    if (skin_total > 0) j["fit"]["skin_coverage"] = double(skin_covered) / skin_total;
+                {"person_height_px", quality.person_height_px},
+                {"mean_joint_error_percent", quality.mean_joint_error_percent},
+                {"person_iou", quality.person_iou}};
+    if (quality.skin_coverage >= 0) j["fit"]["skin_coverage"] = quality.skin_coverage;
 
     const fs::path dir(args.out);
     write_json_file(dir / "body.json", j);
     body::export_glb(dir / "body.glb", model, shaped, fit.pose);
-    write_png(dir / "overlay.png", draw_fit_overlay(photo, silhouette, fit.joints_2d, in.joints_px));
+    write_png(dir / "overlay.png", draw_fit_overlay(photo, quality.silhouette, fit.joints_2d, in.joints_px));
 }
 
 }  // namespace

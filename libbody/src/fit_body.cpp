@@ -501,4 +501,30 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
     return finish();
 }
 
+FitQuality fit_quality(const BodyModel& model, const FitInputs& inputs, const BodyFit& fit,
+                       const FitSummary& summary) {
+    require(inputs.skin.width == 0 || (inputs.skin.width == inputs.person.width && inputs.skin.height == inputs.person.height),
+            "fit_quality: the skin mask is ", inputs.skin.width, " x ", inputs.skin.height,
+            " pixels but the person mask is ", inputs.person.width, " x ", inputs.person.height);
+    const ShapedBody shaped = shape_from_coefficients(model, fit.coefficients);
+    const PosedBody posed = pose_body(model, shaped, fit.pose);
+    FitQuality q;
+    q.silhouette = render_silhouette(posed.vertices, model.faces, fit.camera, inputs.person.width, inputs.person.height);
+    int inter = 0, uni = 0, skin_total = 0, skin_covered = 0;
+    for (size_t i = 0; i < q.silhouette.pixels.size(); ++i) {
+        const bool b = q.silhouette.pixels[i] != 0, p = inputs.person.pixels[i] != 0;
+        inter += b && p;
+        uni += b || p;
+        if (!inputs.skin.pixels.empty() && inputs.skin.pixels[i]) {
+            ++skin_total;
+            skin_covered += b;
+        }
+    }
+    q.person_iou = uni > 0 ? double(inter) / uni : 0.0;
+    if (skin_total > 0) q.skin_coverage = double(skin_covered) / skin_total;
+    q.person_height_px = std::max(inputs.joints_px(0, 1), inputs.joints_px(5, 1)) - inputs.joints_px(13, 1);
+    q.mean_joint_error_percent = 100.0 * summary.mean_joint_error_px / std::max(1.0, q.person_height_px);
+    return q;
+}
+
 }  // namespace drape::body

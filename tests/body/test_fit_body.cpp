@@ -328,15 +328,21 @@ TEST_CASE("fit_body recovers a synthetic body's joints and height", "[body][fit]
         CHECK((fit.joints_2d.row(i) - s.inputs.joints_px.row(i)).norm() < 2.0);
     const double measured = measure_body(model, s.shaped.vertices).height_m;
     CHECK(fit.shape[Semantic::height_m] == Approx(measured).epsilon(0.02));
-    // The recovered body covers its own silhouette.
+    // The recovered body covers its own silhouette (fit_quality, cross-checked by hand).
+    const FitQuality q = fit_quality(model, s.inputs, fit, summary);
     const PosedBody posed = pose_body(model, shape_from_coefficients(model, fit.coefficients), fit.pose);
     const Mask m = render_silhouette(posed.vertices, model.faces, fit.camera, 400, 600);
+    REQUIRE(q.silhouette.pixels == m.pixels);
     int inter = 0, uni = 0;
     for (size_t i = 0; i < m.pixels.size(); ++i) {
         inter += m.pixels[i] && s.inputs.person.pixels[i];
         uni += m.pixels[i] || s.inputs.person.pixels[i];
     }
     CHECK(double(inter) / uni > 0.9);
+    CHECK(q.person_iou == Approx(double(inter) / uni));
+    CHECK(q.skin_coverage > 0.9);  // the body covers its own visible skin
+    CHECK(q.person_height_px > 300);
+    CHECK(q.mean_joint_error_percent == Approx(100 * summary.mean_joint_error_px / q.person_height_px));
 }
 
 TEST_CASE("fit_body with a pinhole camera fits the joints", "[body][fit][synthetic]") {

@@ -86,4 +86,24 @@ struct FitSummary {
 FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOptions& options,
                     BodyFit& fit);
 
+/// How well a fitted body matches the photo it was fitted to (the quality figures of
+/// docs/body-fitting.md, measured on the fitted body's silhouette).
+struct FitQuality {
+    double person_iou = 0;        ///< IoU of the body's silhouette and inputs.person
+    /// Fraction of inputs.skin's pixels the body covers; -1 when there is no skin mask (or
+    /// it is empty).
+    double skin_coverage = -1;
+    double person_height_px = 0;  ///< head-top joint to the lower ankle, pixels
+    /// FitSummary::mean_joint_error_px as a percentage of person_height_px (>= 1 px).
+    double mean_joint_error_percent = 0;
+    Mask silhouette;              ///< the fitted body rendered with the fitted camera
+};
+
+/// Renders the fitted body (`fit`: coefficients, pose, camera) into the person mask's image
+/// and measures it against `inputs` (as given to fit_body) and `summary` (its result).
+/// \throw drape::InvalidInput if the fit's coefficients do not match the model or the
+///        skin mask's size differs from the person mask's.
+FitQuality fit_quality(const BodyModel& model, const FitInputs& inputs, const BodyFit& fit,
+                       const FitSummary& summary);
+
 }  // namespace drape::body
