@@ -5,6 +5,7 @@
 #include "dressing_internal.hpp"
 #include "dressing_stages.hpp"
 
+#include <drape/core/bvh.hpp>
 #include <drape/core/closest_point_triangle.hpp>
 #include <drape/core/point_in_mesh.hpp>
 
@@ -19,12 +20,10 @@
 #include <chrono>
 #include <initializer_list>
 #include <map>
-#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <sstream>
-#include <unordered_map>
 
 namespace drape::garment {
 
@@ -63,28 +62,14 @@ int guarded_moves(const GarmentMesh& mesh, const Eigen::MatrixX3d& to, Eigen::Ma
     std::vector<std::vector<int>> faces_of(static_cast<size_t>(nv));
     for (int f = 0; f < nf; ++f)
         for (int k = 0; k < 3; ++k) faces_of[size_t(F(f, k))].push_back(f);
-    // Faces hashed by their box over both states (a face stays inside it during the pass).
-    double mean_edge = 0;
-    for (int f = 0; f < nf; ++f) mean_edge += (X.row(F(f, 0)) - X.row(F(f, 1))).norm();
-    const double cell = std::max(2.0 * mean_edge / std::max(nf, 1), 1e-3);
-    const auto cell_of = [&](const Eigen::Vector3d& p) -> Eigen::Vector3i {
-        return (p / cell).array().floor().cast<int>();
-    };
-    const auto key = [](const Eigen::Vector3i& c) {
-        return (int64_t(c.x()) * 73856093) ^ (int64_t(c.y()) * 19349663) ^ (int64_t(c.z()) * 83492791);
-    };
+    // Faces indexed by their box over both states (a face stays inside it during the pass).
     std::vector<Eigen::AlignedBox3d> box(static_cast<size_t>(nf));
-    std::unordered_map<int64_t, std::vector<int>> grid;
-    for (int f = 0; f < nf; ++f) {
+    for (int f = 0; f < nf; ++f)
         for (int k = 0; k < 3; ++k) {
             box[size_t(f)].extend(Eigen::Vector3d(X.row(F(f, k)).transpose()));
             box[size_t(f)].extend(Eigen::Vector3d(to.row(F(f, k)).transpose()));
         }
-        const Eigen::Vector3i a = cell_of(box[size_t(f)].min()), b = cell_of(box[size_t(f)].max());
-        for (int x = a.x(); x <= b.x(); ++x)
-            for (int y = a.y(); y <= b.y(); ++y)
-                for (int z = a.z(); z <= b.z(); ++z) grid[key({x, y, z})].push_back(f);
-    }
+    const core::Bvh bvh(box);
     const auto tri = [&](int f) {
         Eigen::Matrix3d m;
         for (int k = 0; k < 3; ++k) m.col(k) = X.row(F(f, k)).transpose();
@@ -97,29 +82,24 @@ int guarded_moves(const GarmentMesh& mesh, const Eigen::MatrixX3d& to, Eigen::Ma
         return false;
     };
     int not_moved = 0;
-    std::vector<int> near;
+    // near[i]: the faces (increasing) whose box meets that of the i-th face at the vertex,
+    // other than it and its neighbours.
+    std::vector<std::vector<int>> near;
     for (int v = 0; v < nv; ++v) {
         if ((to.row(v) - X.row(v)).squaredNorm() == 0) continue;
-        near.clear();
-        for (int f : faces_of[size_t(v)]) {
-            const Eigen::Vector3i a = cell_of(box[size_t(f)].min()), b = cell_of(box[size_t(f)].max());
-            for (int x = a.x(); x <= b.x(); ++x)
-                for (int y = a.y(); y <= b.y(); ++y)
-                    for (int z = a.z(); z <= b.z(); ++z) {
-                        const auto it = grid.find(key({x, y, z}));
-                        if (it != grid.end()) near.insert(near.end(), it->second.begin(), it->second.end());
-                    }
+        const std::vector<int>& at_v = faces_of[size_t(v)];
+        near.assign(at_v.size(), {});
+        for (size_t i = 0; i < at_v.size(); ++i) {
+            const int f = at_v[i];
+            for (int g : bvh.overlapping(box[size_t(f)]))
+                if (g != f && !adjacent(f, g)) near[i].push_back(g);
         }
-        std::sort(near.begin(), near.end());
-        near.erase(std::unique(near.begin(), near.end()), near.end());
         const auto crossings = [&]() {
             int n = 0;
-            for (int f : faces_of[size_t(v)]) {
-                const Eigen::Matrix3d a = tri(f);
-                for (int g : near)
-                    if (g != f && !adjacent(f, g) && box[size_t(f)].intersects(box[size_t(g)]) &&
-                        cloth::triangles_intersect(a, tri(g)))
-                        ++n;
+            for (size_t i = 0; i < at_v.size(); ++i) {
+                const Eigen::Matrix3d a = tri(at_v[i]);
+                for (int g : near[i])
+                    if (cloth::triangles_intersect(a, tri(g))) ++n;
             }
             return n;
         };
@@ -362,35 +342,15 @@ std::vector<LayerPair> layer_pairs(const GarmentMesh& mesh, const Eigen::MatrixX
                                    double rest_radius_m) {
     const Eigen::MatrixX3i& F = mesh.cloth.faces;
     const std::vector<int> rep = sewn_representatives(int(X.rows()), mesh.stitches);
-    const double cell = std::max(radius_m, 1e-4);
-    const auto key = [&](const Eigen::Vector3d& p) {
-        const Eigen::Vector3d c = (p / cell).array().floor();
-        return (int64_t(c.x()) * 73856093) ^ (int64_t(c.y()) * 19349663) ^ (int64_t(c.z()) * 83492791);
-    };
-    // Triangles hashed into every cell their box (grown by the radius) touches.
-    std::unordered_map<int64_t, std::vector<int>> grid;
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        Eigen::Vector3d lo = X.row(F(f, 0)).transpose(), hi = lo;
-        for (int k = 1; k < 3; ++k) {
-            lo = lo.cwiseMin(X.row(F(f, k)).transpose());
-            hi = hi.cwiseMax(X.row(F(f, k)).transpose());
-        }
-        const Eigen::Vector3d a = ((lo.array() - radius_m) / cell).floor(), b = ((hi.array() + radius_m) / cell).floor();
-        for (double x = a.x(); x <= b.x(); ++x)
-            for (double y = a.y(); y <= b.y(); ++y)
-                for (double z = a.z(); z <= b.z(); ++z)
-                    grid[key(Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5) * cell)].push_back(int(f));
-    }
+    // Triangles indexed by their box grown by the radius: every triangle nearer than the
+    // radius to a vertex has the vertex inside its box.
+    const core::Bvh bvh(core::Bvh::triangle_boxes(X, F, radius_m));
     const Eigen::MatrixXd& P = mesh.cloth.pattern;
     std::vector<LayerPair> out;
     for (Eigen::Index v = 0; v < X.rows(); ++v) {
-        const auto it = grid.find(key(X.row(v).transpose()));
-        if (it == grid.end()) continue;
+        const Eigen::Vector3d x = X.row(v).transpose();
         const int pv = mesh.panel_of_vertex(v);
-        std::vector<int> faces = it->second;  // (hash collisions may list a face twice)
-        std::sort(faces.begin(), faces.end());
-        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-        for (int f : faces) {
+        for (int f : bvh.overlapping(core::Box3(x, x))) {
             bool skip = false;
             for (int k = 0; k < 3; ++k) skip = skip || rep[size_t(F(f, k))] == rep[size_t(v)];
             if (skip) continue;
