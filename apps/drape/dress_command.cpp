@@ -138,6 +138,23 @@ void print_arms(const std::string& who, const garment::ArmClearanceSummary& arms
     if (arms.crossings_before > 0) std::cerr << who << ": " << arms.brief_report() << "\n";
 }
 
+// The inputs both forms of `drape dress` read and check before the slow work.
+struct DressInputs {
+    body::Pose pose;
+    cloth::Material material;
+    std::string material_source;
+    body::SemanticRequest body;
+};
+
+DressInputs read_dress_inputs(const DressArgs& args) {
+    require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    DressInputs in;
+    in.pose = resolve_pose(args.pose);
+    in.material = load_material_arg(args.material, args.materials_dir, &in.material_source);
+    in.body = args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
+    return in;
+}
+
 // The pipeline's options from `drape dress`'s flags.
 garment::DressOutfitOptions dress_options(const DressArgs& args) {
     garment::DressOutfitOptions options;
@@ -174,24 +191,19 @@ void run_dress(const DressArgs& requested) {
     const auto start = std::chrono::steady_clock::now();
     // Every input is read and checked before the slow work.
     const GarmentType type = garment_type_from_name(args.garment);
-    require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
-    const body::Pose requested_pose = resolve_pose(args.pose);
-    std::string material_source;
-    const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
-    const body::SemanticRequest request =
-        args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
+    const DressInputs in = read_dress_inputs(args);
     garment::GarmentRequest garment_request;
     garment_request.type = type;
     if (args.sizing != "auto") garment_request.sizing = sizing_from_json(type, read_json_file(args.sizing), args.sizing);
-    garment_request.material = material;
+    garment_request.material = in.material;
     const garment::DressOutfitOptions options = dress_options(args);
 
     const body::BodyModel& model = body::BodyModel::default_model();
-    const body::ShapedBody shaped = shape_requested_body(model, request, "drape dress");
+    const body::ShapedBody shaped = shape_requested_body(model, in.body, "drape dress");
     const fs::path dir = make_output_folder(args.out);
     // Dressed in the rest A-pose, sewn, then moved to the pose (garment::dress_outfit).
     garment::DressedOutfit out;
-    const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, requested_pose, {garment_request}, options, out);
+    const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, in.pose, {garment_request}, options, out);
     print_arms("drape dress", out.arms);
     const garment::Pattern& pattern = out.patterns[0];
     garment::write_pattern_svg(dir / "pattern.svg", pattern);
@@ -217,7 +229,7 @@ void run_dress(const DressArgs& requested) {
     garment::write_garment_glb(dir / "garment.glb", mesh, X);
     if (!args.no_render) write_render(dir / "render.png", out.body_vertices, model.faces, {&mesh}, {X});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    nlohmann::json report = drape_report(args, material_source, draped);
+    nlohmann::json report = drape_report(args, in.material_source, draped);
     report["arms_raised_deg"] = {{"right", out.arms.right_degrees}, {"left", out.arms.left_degrees}};
     report["garment"] = garment_type_name(type);
     report["sizing"] = to_json(out.sizings[0]);
@@ -238,12 +250,7 @@ namespace {
 void run_dress_outfit(const DressArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<GarmentType> types = outfit_from_spec(args.garment);  // inner (bottom) first
-    require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
-    const body::Pose requested_pose = resolve_pose(args.pose);
-    std::string material_source;
-    const cloth::Material material = load_material_arg(args.material, args.materials_dir, &material_source);
-    const body::SemanticRequest request =
-        args.body.empty() ? body::SemanticRequest{} : semantic_request_from_json(read_json_file(args.body), args.body);
+    const DressInputs in = read_dress_inputs(args);
     // --sizing auto, or one JSON object with a group per garment: {"tshirt": {...}, "pants": {...}}.
     nlohmann::json groups;
     if (args.sizing != "auto") {
@@ -261,16 +268,16 @@ void run_dress_outfit(const DressArgs& args) {
         garment::GarmentRequest r;
         r.type = t;
         if (groups.contains(name)) r.sizing = sizing_from_json(t, groups[name], args.sizing + " (" + name + ")");
-        r.material = material;
+        r.material = in.material;
         requests.push_back(r);
     }
     const garment::DressOutfitOptions options = dress_options(args);
 
     const body::BodyModel& model = body::BodyModel::default_model();
-    const body::ShapedBody shaped = shape_requested_body(model, request, "drape dress");
+    const body::ShapedBody shaped = shape_requested_body(model, in.body, "drape dress");
     const fs::path dir = make_output_folder(args.out);
     garment::DressedOutfit out;
-    const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, requested_pose, requests, options, out);
+    const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, in.pose, requests, options, out);
     print_arms("drape dress", out.arms);
     for (size_t g = 0; g < types.size(); ++g) {
         const std::string name = garment_type_name(types[g]);
@@ -301,7 +308,7 @@ void run_dress_outfit(const DressArgs& args) {
     }
     if (!args.no_render) write_render(dir / "render.png", out.body_vertices, model.faces, mesh_ptrs, out.positions);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    nlohmann::json report = drape_report(args, material_source, draped);
+    nlohmann::json report = drape_report(args, in.material_source, draped);
     report["arms_raised_deg"] = {{"right", out.arms.right_degrees}, {"left", out.arms.left_degrees}};
     report["garment"] = args.garment;
     report["garments"] = garments;
