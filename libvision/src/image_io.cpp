@@ -63,8 +63,9 @@ cv::Mat read(const std::filesystem::path& path, int flags, const std::string& wh
     require(static_cast<std::int64_t>(bytes) <= limits.max_file_bytes, what, " '",
             path.string(), "' is too large: ", bytes, " bytes (limit ", limits.max_file_bytes,
             ")");
-    // A JPEG cut short decodes without an error (the missing rows come out gray), so the
-    // encoded structure is checked first.
+    // Read once: the encoded structure is checked first (a JPEG cut short decodes without
+    // an error, the missing rows gray), then the same bytes are decoded (imdecode applies
+    // the EXIF orientation as imread does).
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError("cannot read " + what + " '" + path.string() + "': cannot open the file");
     const std::vector<std::uint8_t> encoded((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -73,7 +74,7 @@ cv::Mat read(const std::filesystem::path& path, int flags, const std::string& wh
     if (!defect.empty()) throw IoError("cannot read " + what + " '" + path.string() + "': " + defect);
     cv::Mat image;
     try {
-        image = cv::imread(path.string(), flags);
+        image = cv::imdecode(encoded, flags);
     } catch (const cv::Exception& e) {
         throw IoError("cannot read " + what + " '" + path.string() + "': " + e.what());
     }
