@@ -1,4 +1,5 @@
 #include "body_layout.hpp"
+#include "layout_prior_data.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -29,21 +30,13 @@ cv::Mat distance_to(const cv::Mat& region) {
     return d;
 }
 
-/// cost = height * min(1, distance / reach)
-cv::Mat ramp(const cv::Mat& dist, double reach, double height) {
-    cv::Mat c;
-    dist.convertTo(c, CV_32F, 1.0 / std::max(1e-6, reach));
-    cv::min(c, 1.0, c);
-    return c * height;
-}
-
 Eigen::Vector2d lerp(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double t) {
     return a + t * (b - a);
 }
 
 }  // namespace
 
-BodyLayout body_layout(cv::Size size, const Joints& j, double weight) {
+BodyLayout body_layout(cv::Size size, const Joints& j) {
     using J = Joint;
     const double H = j.body_height_px();
     const cv::Mat zero = cv::Mat::zeros(size, CV_8UC1);
@@ -65,48 +58,6 @@ BodyLayout body_layout(cv::Size size, const Joints& j, double weight) {
     line(skel, neck, hip, 1);
     const cv::Mat d_skel = distance_to(skel);
 
-    // Torso quad.
-    cv::Mat torso = zero.clone();
-    const cv::Point quad[4] = {pt(j[J::right_shoulder]), pt(j[J::left_shoulder]),
-                               pt(j[J::left_hip]), pt(j[J::right_hip])};
-    cv::fillConvexPoly(torso, quad, 4, cv::Scalar(255));
-
-    // Regions where each class may be.
-    cv::Mat upper = torso.clone();
-    cv::dilate(upper, upper, cv::getStructuringElement(cv::MORPH_ELLIPSE,
-               {2 * int(0.03 * H) + 1, 2 * int(0.03 * H) + 1}));
-    line(upper, j[J::right_shoulder], j[J::right_elbow], 0.07 * H);
-    line(upper, j[J::right_elbow], j[J::right_hand], 0.06 * H);
-    line(upper, j[J::left_shoulder], j[J::left_elbow], 0.07 * H);
-    line(upper, j[J::left_elbow], j[J::left_hand], 0.06 * H);
-    line(upper, neck, sh, 0.08 * H);
-
-    const Eigen::Vector2d waist = lerp(sh, hip, 0.62);
-    cv::Mat lower = zero.clone();
-    {
-        const Eigen::Vector2d rw = lerp(j[J::right_shoulder], j[J::right_hip], 0.62);
-        const Eigen::Vector2d lw = lerp(j[J::left_shoulder], j[J::left_hip], 0.62);
-        const Eigen::Vector2d side = (j[J::left_hip] - j[J::right_hip]).normalized() * 0.08 * H;
-        const cv::Point poly[4] = {pt(rw), pt(lw), pt(j[J::left_knee] + side),
-                                   pt(j[J::right_knee] - side)};
-        cv::fillConvexPoly(lower, poly, 4, cv::Scalar(255));
-        line(lower, j[J::right_knee], j[J::right_ankle], 0.07 * H);
-        line(lower, j[J::left_knee], j[J::left_ankle], 0.07 * H);
-        line(lower, j[J::right_hip], j[J::right_knee], 0.1 * H);
-        line(lower, j[J::left_hip], j[J::left_knee], 0.1 * H);
-    }
-    cv::Mat hair = zero.clone();
-    line(hair, head, neck, 0.16 * H);
-    line(hair, neck, lerp(neck, hip, 0.3), 0.16 * H);
-    disc(hair, head, 0.6 * head_len);
-
-    const double reach = 0.05 * H;
-    out.prior[kBackground] = ramp(0.06 * H - cv::min(d_skel, 0.06 * H), 0.06 * H, 4.0 * weight);
-    out.prior[kUpper] = ramp(distance_to(upper), reach, 3.0 * weight);
-    out.prior[kLower] = ramp(distance_to(lower), reach, 3.0 * weight);
-    out.prior[kHair] = ramp(distance_to(hair), reach, 3.0 * weight);
-    out.prior[kSkin] = ramp(d_skel, 0.12 * H, 3.0 * weight);
-
     // Seeds for the first colour models, and hard constraints.
     for (auto& s : out.seed) s = zero.clone();
     out.seed[kBackground] = d_skel > 0.15 * H;
@@ -127,7 +78,6 @@ BodyLayout body_layout(cv::Size size, const Joints& j, double weight) {
     disc(hands, j[J::left_hand], 0.06 * H);
     out.seed[kUpper] &= ~hands;
     out.seed[kLower] &= ~hands;
-    (void)waist;
 
     out.hard = cv::Mat(size, CV_8UC1, cv::Scalar(255));
     out.hard.setTo(kBackground, d_skel > 0.22 * H);
@@ -140,6 +90,38 @@ BodyLayout body_layout(cv::Size size, const Joints& j, double weight) {
     out.hard.setTo(kUpper, core_upper & ~hands);
     out.hard.setTo(kLower, core_lower & ~hands);
     out.hard.setTo(kSkin, core_face);
+    return out;
+}
+
+std::array<cv::Mat, kAutoLabels> learned_layout(cv::Size size, const Joints& j,
+                                                double pseudo_count) {
+    static_assert(kLayoutPriorClasses == kAutoLabels, "the table's classes are the AutoLabels");
+    // Per-cell probabilities.
+    std::array<double, kAutoLabels> total{};
+    for (int c = 0; c < kFrameCells; ++c)
+        for (int l = 0; l < kAutoLabels; ++l) total[size_t(l)] += kLayoutPriorCounts[c][l];
+    double all = 0;
+    for (double t : total) all += t;
+    std::vector<float> prob(size_t(kFrameCells) * kAutoLabels);
+    for (int c = 0; c < kFrameCells; ++c) {
+        double n = 0;
+        for (int l = 0; l < kAutoLabels; ++l) n += kLayoutPriorCounts[c][l];
+        for (int l = 0; l < kAutoLabels; ++l) {
+            const double prior = all > 0 ? total[size_t(l)] / all : 1.0 / kAutoLabels;
+            const double p = (kLayoutPriorCounts[c][l] + pseudo_count * prior) / (n + pseudo_count);
+            prob[size_t(c) * kAutoLabels + size_t(l)] = float(p);
+        }
+    }
+    std::array<cv::Mat, kAutoLabels> out;
+    for (auto& m : out) m = cv::Mat(size, CV_32F);
+    const auto seg = frame_segments(j);
+    const double H = j.body_height_px();
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            const int c = frame_cell(seg, H, {x + 0.5, y + 0.5});
+            for (int l = 0; l < kAutoLabels; ++l)
+                out[size_t(l)].at<float>(y, x) = prob[size_t(c) * kAutoLabels + size_t(l)];
+        }
     return out;
 }
 

@@ -1,5 +1,6 @@
-// Pose-derived layout of the automatic segmentation: where background, skin, hair, upper
-// and lower garment can be, from the 14 joints (docs/vision.md, "Segmentation").
+// Pose-derived layout of the automatic segmentation, from the 14 joints (docs/vision.md,
+// "Segmentation"): hand-placed seeds and hard constraints (body_layout) and the learned
+// spatial prior, p(label | cell of the body frame) (learned_layout).
 #pragma once
 
 #include <drape/vision/joints.hpp>
@@ -11,16 +12,29 @@
 namespace drape::vision::detail {
 
 /// Label indices of the automatic segmentation.
-enum AutoLabel : int { kBackground = 0, kSkin = 1, kHair = 2, kUpper = 3, kLower = 4 };
-inline constexpr int kAutoLabels = 5;
+/// kOther: what is neither background, skin, hair nor a garment of the parse (bags, belts,
+/// outerwear, shoes, tights, accessories).
+enum AutoLabel : int { kBackground = 0, kSkin = 1, kHair = 2, kUpper = 3, kLower = 4, kOther = 5 };
+inline constexpr int kAutoLabels = 6;
+
+/// Smoothing of learned_layout: samples of the overall class frequencies added to each cell.
+inline constexpr double kLayoutPseudoCount = 20.0;
+/// "Other"'s first colour model: the pixels where learned_layout gives it more than this.
+inline constexpr double kOtherSeedProbability = 0.5;
 
 struct BodyLayout {
-    std::array<cv::Mat, kAutoLabels> prior;  ///< CV_32F spatial costs per label
-    std::array<cv::Mat, kAutoLabels> seed;   ///< CV_8UC1 regions for the first colour models
+    std::array<cv::Mat, kAutoLabels> seed;   ///< CV_8UC1 regions for the first colour models (kOther: empty)
     cv::Mat hard;                            ///< CV_8UC1 label index or 255 (free)
 };
 
-/// The layout for an image of `size` whose joints (in that image's pixels) are `joints`.
-BodyLayout body_layout(cv::Size size, const Joints& joints, double weight);
+/// Seeds and hard constraints for an image of `size` whose joints (in that image's
+/// pixels) are `joints`.
+BodyLayout body_layout(cv::Size size, const Joints& joints);
+
+/// Learned layout: p(label | cell of the body frame) per pixel (CV_32F), from the class
+/// counts of hand-labelled photos per cell (layout_prior_data.hpp), each cell's counts
+/// smoothed towards the overall class frequencies by `pseudo_count` samples.
+std::array<cv::Mat, kAutoLabels> learned_layout(cv::Size size, const Joints& joints,
+                                                double pseudo_count);
 
 }  // namespace drape::vision::detail

@@ -43,8 +43,9 @@ struct SegmentationOptions {
     /// strokes (drawn along its medial axis) however surely they are background; a
     /// compact garment region has no such far pixels.
     double background_distance_factor = 0.625;  ///< >= 0
-    /// Automatic mode: weight of the pose-derived spatial prior.
-    double layout_weight = 1.0;             ///< >= 0
+    /// Automatic mode: weight of the learned spatial prior, layout_weight x -ln p(label |
+    /// body-frame cell) added to each label's colour cost (docs/vision.md, "Segmentation").
+    double layout_weight = 0.5;             ///< >= 0
     bool refine_boundaries = true;
     /// SLIC superpixel size for the refinement, as a fraction of the body height (or of
     /// the image height in strokes mode without joints).
