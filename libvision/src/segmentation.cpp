@@ -495,10 +495,10 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
         p.prior.push_back(log_p * -o.layout_weight);
     }
     // ... without the colours of where the layout expects the lower garment or skin most
-    // (thighs and hips; face, arms): a maxi skirt or trousers hide the feet, and a seed on
-    // them would give "other" the garment's colours (002149's maxi skirt, the hands and a
-    // clutch over its thighs, went to "other" whole). A colour is theirs when their
-    // histogram gives it more than a uniform one would (cost < 0).
+    // (thighs and hips; face, arms): a maxi skirt or trousers cover the feet, and a seed
+    // on them would give "other" the garment's colours. A colour is theirs when their
+    // histogram gives it more than a uniform one would (cost < 0). (A guard: no change
+    // measured on the tuning photos, docs/notes/vision.md.)
     {
         const cv::Mat bins = colour_bins(small, o.histogram_bins);
         std::array<ColourHistogram, 2> known{ColourHistogram(o.histogram_bins),
