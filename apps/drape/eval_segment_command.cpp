@@ -1,4 +1,5 @@
-// drape eval-segment DIR [--mode strokes|auto|both] [--scale-check] [--limit N] --out RESULT.json
+// drape eval-segment DIR [--mode strokes|auto|both] [--split tune|heldout|all]
+//                   [--scale-check] [--limit N] --out RESULT.json
 //
 // Evaluates garment parsing on a folder in the ../shared/data/photos layout
 // (images/NAME.jpg, labels/NAME.png, joints/NAME.json, optional index.csv): per photo and
@@ -12,6 +13,7 @@
 #include <drape/vision/classify_garment.hpp>
 #include <drape/vision/garment_result.hpp>
 #include <drape/vision/image_io.hpp>
+#include <drape/vision/photo_split.hpp>
 #include <drape/vision/segmentation.hpp>
 #include <drape/vision/segmentation_score.hpp>
 #include <drape/vision/strokes.hpp>
@@ -47,6 +49,7 @@ struct EvalArgs {
     std::string dir;
     std::string mode = "both";
     std::string out;
+    std::string split = "all";
     int limit = 0;
     bool scale_check = false;
     std::vector<std::string> names;
@@ -130,6 +133,41 @@ struct ModeTotals {
 };
 
 using Clock = std::chrono::steady_clock;
+
+void add_totals(ModeTotals& sum, const ModeTotals& t) {
+    sum.iou_sum += t.iou_sum;
+    sum.garments += t.garments;
+    sum.types_right += t.types_right;
+    sum.seconds_sum += t.seconds_sum;
+    sum.seconds_max = std::max(sum.seconds_max, t.seconds_max);
+    sum.photos += t.photos;
+    for (const auto& [type, v] : t.iou_by_type) {
+        sum.iou_by_type[type].first += v.first;
+        sum.iou_by_type[type].second += v.second;
+    }
+}
+
+nlohmann::json totals_json(const ModeTotals& t) {
+    nlohmann::json by_type = nlohmann::json::object();
+    for (const auto& [type, v] : t.iou_by_type)
+        by_type[type] = {{"mean_iou", v.first / v.second}, {"garments", v.second}};
+    return {{"photos", t.photos},
+            {"garments", t.garments},
+            {"mean_garment_iou", t.iou_sum / std::max(1, t.garments)},
+            {"type_accuracy", double(t.types_right) / std::max(1, t.garments)},
+            {"mean_seconds_per_photo", t.seconds_sum / std::max(1, t.photos)},
+            {"max_seconds_per_photo", t.seconds_max},
+            {"iou_by_true_type", by_type}};
+}
+
+void print_totals(const std::string& label, const ModeTotals& t) {
+    std::cout << label << ": mean garment IoU " << std::fixed << std::setprecision(3)
+              << t.iou_sum / std::max(1, t.garments) << " over " << t.garments
+              << " garments (" << t.photos << " photos), type accuracy " << std::setprecision(1)
+              << 100.0 * t.types_right / std::max(1, t.garments) << " %, "
+              << std::setprecision(2) << t.seconds_sum / std::max(1, t.photos)
+              << " s/photo (max " << t.seconds_max << " s)\n";
+}
 
 nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv::Mat& gt,
                         const vision::Joints& joints, const Parse& truth,
@@ -259,8 +297,24 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
 void run_eval(const EvalArgs& args) {
     if (args.mode != "strokes" && args.mode != "auto" && args.mode != "both" && args.mode != "none")
         throw InvalidInput("--mode '" + args.mode + "' is not one of strokes, auto, both, none");
+    const vision::PhotoSplit split = vision::parse_photo_split(args.split);
     const fs::path dir(args.dir);
     auto photos = list_photos(dir);
+    // The split's part of every photo, from the sorted names of the whole folder
+    // (docs/vision.md, "Evaluation protocol"), before --names or --limit select photos.
+    std::map<std::string, vision::PhotoSplit> part_of_photo;
+    {
+        std::vector<std::string> all_names;
+        for (const auto& p : photos) all_names.push_back(p.first);
+        const auto parts = vision::photo_split_parts(all_names);
+        for (size_t i = 0; i < all_names.size(); ++i) part_of_photo[all_names[i]] = parts[i];
+        if (split != vision::PhotoSplit::all) {
+            std::vector<std::pair<std::string, std::string>> kept;
+            for (const auto& p : photos)
+                if (part_of_photo.at(p.first) == split) kept.push_back(p);
+            photos = kept;
+        }
+    }
     if (!args.names.empty()) {
         std::vector<std::pair<std::string, std::string>> kept;
         for (const auto& p : photos)
@@ -274,7 +328,9 @@ void run_eval(const EvalArgs& args) {
     if (args.mode == "strokes" || args.mode == "both") modes.push_back("strokes");
     if (args.mode == "auto" || args.mode == "both") modes.push_back("auto");
     const LabelTable& table = LabelTable::fashionista();
+    // Totals per mode and per part of the split (tune, heldout).
     std::map<std::string, ModeTotals> totals;
+    std::map<std::string, std::map<std::string, ModeTotals>> totals_by_part;
     ScaleCheckTotals scale_totals;
     nlohmann::json per_photo = nlohmann::json::array();
     for (const auto& [name, category] : photos) {
@@ -284,14 +340,19 @@ void run_eval(const EvalArgs& args) {
             read_vision_joints(dir / "joints" / (name + ".json"), photo.cols, photo.rows);
         const Parse truth = parse_of(gt, table, joints, {});
         nlohmann::json pj;
+        const std::string part = vision::to_string(part_of_photo.at(name));
         pj["name"] = name;
         pj["category"] = category;
+        pj["split"] = part;
         if (!category.empty() && truth.types.count(GarmentPart::lower) &&
             std::string(vision::to_string(truth.types.at(GarmentPart::lower))) != category)
             pj["warning"] = "category in index.csv differs from the labelled lower garment";
-        std::cout << name << " (" << category << "):";
+        std::cout << name << " (" << category << ", " << part << "):";
         for (const auto& m : modes) {
-            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, args.garment, totals[m]);
+            ModeTotals one;
+            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, args.garment, one);
+            add_totals(totals[m], one);
+            add_totals(totals_by_part[m][part], one);
             std::cout << "  " << m << " IoU " << std::fixed << std::setprecision(3)
                       << pj[m]["mean_iou"].get<double>() << " (" << std::setprecision(2)
                       << pj[m]["seconds"].get<double>() << " s)";
@@ -307,24 +368,15 @@ void run_eval(const EvalArgs& args) {
     result["format"] = "drape.segment_eval";
     result["version"] = 1;
     result["folder"] = args.dir;
+    result["split"] = args.split;
     result["photos"] = per_photo;
     for (const auto& [m, t] : totals) {
-        nlohmann::json by_type = nlohmann::json::object();
-        for (const auto& [type, v] : t.iou_by_type)
-            by_type[type] = {{"mean_iou", v.first / v.second}, {"garments", v.second}};
-        result["summary"][m] = {{"photos", t.photos},
-                                {"garments", t.garments},
-                                {"mean_garment_iou", t.iou_sum / std::max(1, t.garments)},
-                                {"type_accuracy", double(t.types_right) / std::max(1, t.garments)},
-                                {"mean_seconds_per_photo", t.seconds_sum / std::max(1, t.photos)},
-                                {"max_seconds_per_photo", t.seconds_max},
-                                {"iou_by_true_type", by_type}};
-        std::cout << m << ": mean garment IoU " << std::setprecision(3)
-                  << t.iou_sum / std::max(1, t.garments) << " over " << t.garments
-                  << " garments, type accuracy "
-                  << 100.0 * t.types_right / std::max(1, t.garments) << " %, "
-                  << std::setprecision(2) << t.seconds_sum / std::max(1, t.photos)
-                  << " s/photo (max " << t.seconds_max << " s)\n";
+        result["summary"][m] = totals_json(t);
+        for (const auto& [part, tp] : totals_by_part[m]) {
+            result["summary"][m]["by_split"][part] = totals_json(tp);
+            print_totals(m + " [" + part + "]", tp);
+        }
+        print_totals(m, t);
     }
     if (args.scale_check) {
         const auto& t = scale_totals;
@@ -368,6 +420,9 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--out", args->out, "result JSON to write")->required();
     cmd->add_option("--limit", args->limit, "evaluate only the first N photos");
     cmd->add_option("--names", args->names, "evaluate only these photos (NAME without extension)");
+    cmd->add_option("--split", args->split,
+                    "tune | heldout | all (default): the part of the folder's fixed split to evaluate "
+                    "(names sorted; even 0-based positions tune, odd held-out; docs/vision.md)");
     cmd->add_flag("--scale-check", args->scale_check,
                   "also measure the wrinkle density of the hand-labelled garments at x0.5 and x2");
     // SegmentationOptions members exposed for tuning (docs/notes/vision.md, "Tuning tried").
