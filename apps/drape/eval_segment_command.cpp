@@ -50,6 +50,8 @@ struct EvalArgs {
     std::string mode = "both";
     std::string out;
     std::string split = "all";
+    std::string stroke_style = "medial";
+    std::uint64_t stroke_seed = 1;
     int limit = 0;
     bool scale_check = false;
     std::vector<std::string> names;
@@ -169,21 +171,40 @@ void print_totals(const std::string& label, const ModeTotals& t) {
               << " s/photo (max " << t.seconds_max << " s)\n";
 }
 
-nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv::Mat& gt,
+/// The key of a stroke style in the result: "strokes" for the medial axis (as before the
+/// styles existed), "strokes-STYLE" for the others.
+std::string strokes_key(vision::StrokeStyle style) {
+    return style == vision::StrokeStyle::medial ? "strokes" : std::string("strokes-") + vision::to_string(style);
+}
+
+/// The simulated user's seed for one photo: the run's seed mixed with the photo's name
+/// (FNV-1a), so every photo gets its own pattern and a run is reproducible.
+std::uint64_t photo_seed(std::uint64_t seed, const std::string& name) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+    return h ^ (seed * 0x9e3779b97f4a7c15ull);
+}
+
+nlohmann::json evaluate(const std::string& mode, std::uint64_t seed, const cv::Mat& photo, const cv::Mat& gt,
                         const vision::Joints& joints, const Parse& truth,
                         const vision::SegmentationOptions& options,
                         const vision::GarmentOptions& garment_options, ModeTotals& totals) {
     const LabelTable& table = LabelTable::fashionista();
     vision::Segmentation seg;
-    const auto t0 = Clock::now();
     vision::SegmentationSummary summary;
     nlohmann::json j;
-    if (mode == "strokes") {
-        const cv::Mat strokes = vision::simulate_strokes(gt);
+    const bool with_strokes = mode.rfind("strokes", 0) == 0;
+    cv::Mat strokes;  // the simulated user's strokes: not part of the timed work
+    if (with_strokes) {
+        const vision::StrokeStyle style =
+            mode == "strokes" ? vision::StrokeStyle::medial : vision::parse_stroke_style(mode.substr(8));
+        strokes = vision::simulate_strokes(gt, style, seed);
         j["marked_fraction"] = vision::marked_fraction(strokes);
-        const auto ts = Clock::now();
+        j["wrong_mark_fraction"] = vision::wrong_mark_fraction(strokes, gt);
+    }
+    const auto t0 = Clock::now();
+    if (with_strokes) {
         summary = vision::segment_with_strokes(photo, strokes, &joints, options, seg);
-        (void)ts;
     } else {
         summary = vision::segment_automatic(photo, joints, options, seg);
     }
@@ -295,6 +316,7 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
 }
 
 void run_eval(const EvalArgs& args) {
+    if (args.stroke_style != "all") vision::parse_stroke_style(args.stroke_style);  // named error early
     if (args.mode != "strokes" && args.mode != "auto" && args.mode != "both" && args.mode != "none")
         throw InvalidInput("--mode '" + args.mode + "' is not one of strokes, auto, both, none");
     const vision::PhotoSplit split = vision::parse_photo_split(args.split);
@@ -325,7 +347,15 @@ void run_eval(const EvalArgs& args) {
     if (args.limit > 0 && int(photos.size()) > args.limit) photos.resize(size_t(args.limit));
     if (photos.empty()) throw InvalidInput("no photo to evaluate in '" + args.dir + "'");
     std::vector<std::string> modes;
-    if (args.mode == "strokes" || args.mode == "both") modes.push_back("strokes");
+    if (args.mode == "strokes" || args.mode == "both") {
+        if (args.stroke_style == "all") {
+            for (auto st : {vision::StrokeStyle::medial, vision::StrokeStyle::dashes, vision::StrokeStyle::dots,
+                            vision::StrokeStyle::sloppy})
+                modes.push_back(strokes_key(st));
+        } else {
+            modes.push_back(strokes_key(vision::parse_stroke_style(args.stroke_style)));
+        }
+    }
     if (args.mode == "auto" || args.mode == "both") modes.push_back("auto");
     const LabelTable& table = LabelTable::fashionista();
     // Totals per mode and per part of the split (tune, heldout).
@@ -350,7 +380,8 @@ void run_eval(const EvalArgs& args) {
         std::cout << name << " (" << category << ", " << part << "):";
         for (const auto& m : modes) {
             ModeTotals one;
-            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, args.garment, one);
+            pj[m] = evaluate(m, photo_seed(args.stroke_seed, name), photo, gt, joints, truth, args.options,
+                             args.garment, one);
             add_totals(totals[m], one);
             add_totals(totals_by_part[m][part], one);
             std::cout << "  " << m << " IoU " << std::fixed << std::setprecision(3)
@@ -369,6 +400,7 @@ void run_eval(const EvalArgs& args) {
     result["version"] = 1;
     result["folder"] = args.dir;
     result["split"] = args.split;
+    result["stroke_seed"] = args.stroke_seed;
     result["photos"] = per_photo;
     for (const auto& [m, t] : totals) {
         result["summary"][m] = totals_json(t);
@@ -420,6 +452,11 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--out", args->out, "result JSON to write")->required();
     cmd->add_option("--limit", args->limit, "evaluate only the first N photos");
     cmd->add_option("--names", args->names, "evaluate only these photos (NAME without extension)");
+    cmd->add_option("--stroke-style", args->stroke_style,
+                    "medial (default) | dashes | dots | sloppy | all: the simulated user's strokes "
+                    "(docs/vision.md, \"Simulated strokes\"); summaries strokes, strokes-dashes, ...");
+    cmd->add_option("--stroke-seed", args->stroke_seed,
+                    "seed of the simulated user (mixed with each photo's name; default 1)");
     cmd->add_option("--split", args->split,
                     "tune | heldout | all (default): the part of the folder's fixed split to evaluate "
                     "(names sorted; even 0-based positions tune, odd held-out; docs/vision.md)");
