@@ -6,6 +6,7 @@
 // mean IoU per garment against the hand labels, garment-type accuracy and time
 // (docs/vision.md, "Evaluation").
 #include "commands.hpp"
+#include "image_io.hpp"
 #include "json_io.hpp"
 #include "vision_json.hpp"
 
@@ -54,6 +55,8 @@ struct EvalArgs {
     std::uint64_t stroke_seed = 1;
     int limit = 0;
     bool scale_check = false;
+    bool iou_only = false;
+    std::string save_dir;
     std::vector<std::string> names;
     vision::SegmentationOptions options;
     vision::GarmentOptions garment;
@@ -188,7 +191,8 @@ std::uint64_t photo_seed(std::uint64_t seed, const std::string& name) {
 nlohmann::json evaluate(const std::string& mode, std::uint64_t seed, const cv::Mat& photo, const cv::Mat& gt,
                         const vision::Joints& joints, const Parse& truth,
                         const vision::SegmentationOptions& options,
-                        const vision::GarmentOptions& garment_options, ModeTotals& totals) {
+                        const vision::GarmentOptions& garment_options, bool iou_only,
+                        const std::string& save_prefix, ModeTotals& totals) {
     const LabelTable& table = LabelTable::fashionista();
     vision::Segmentation seg;
     vision::SegmentationSummary summary;
@@ -208,7 +212,20 @@ nlohmann::json evaluate(const std::string& mode, std::uint64_t seed, const cv::M
     } else {
         summary = vision::segment_automatic(photo, joints, options, seg);
     }
-    const auto garments = vision::describe_garments(photo, seg, joints, table, garment_options);
+    if (!iou_only) vision::describe_garments(photo, seg, joints, table, garment_options);
+    if (!save_prefix.empty()) {
+        cv::Mat overlay = vision::draw_segmentation(photo, seg.labels);
+        if (!strokes.empty()) {
+            const cv::Mat c = vision::colour_strokes(strokes, vision::StrokePalette::fashionista_default());
+            for (int y = 0; y < c.rows; ++y)
+                for (int x = 0; x < c.cols; ++x)
+                    if (c.at<cv::Vec4b>(y, x)[3]) {
+                        const cv::Vec4b v = c.at<cv::Vec4b>(y, x);
+                        overlay.at<cv::Vec3b>(y, x) = cv::Vec3b(v[0], v[1], v[2]);
+                    }
+        }
+        write_png(save_prefix + "_" + mode + ".png", overlay);
+    }
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const Parse pred = parse_of(seg.labels, table, joints, seg.garment_types);
     nlohmann::json per = nlohmann::json::array();
@@ -381,7 +398,8 @@ void run_eval(const EvalArgs& args) {
         for (const auto& m : modes) {
             ModeTotals one;
             pj[m] = evaluate(m, photo_seed(args.stroke_seed, name), photo, gt, joints, truth, args.options,
-                             args.garment, one);
+                             args.garment, args.iou_only,
+                             args.save_dir.empty() ? "" : (fs::path(args.save_dir) / name).string(), one);
             add_totals(totals[m], one);
             add_totals(totals_by_part[m][part], one);
             std::cout << "  " << m << " IoU " << std::fixed << std::setprecision(3)
@@ -460,6 +478,11 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--split", args->split,
                     "tune | heldout | all (default): the part of the folder's fixed split to evaluate "
                     "(names sorted; even 0-based positions tune, odd held-out; docs/vision.md)");
+    cmd->add_flag("--iou-only", args->iou_only,
+                  "skip describe_garments (features, wrinkles): for tuning sweeps; the time is then "
+                  "the segmentation's alone");
+    cmd->add_option("--save-overlays", args->save_dir,
+                    "write DIR/NAME_MODE.png: the parse over the photo, with the simulated strokes drawn in");
     cmd->add_flag("--scale-check", args->scale_check,
                   "also measure the wrinkle density of the hand-labelled garments at x0.5 and x2");
     // SegmentationOptions members exposed for tuning (docs/notes/vision.md, "Tuning tried").
@@ -471,7 +494,14 @@ void add_eval_segment_command(CLI::App& app) {
         {"superpixel-fraction", &o.superpixel_fraction},
         {"background-distance-factor", &o.background_distance_factor},
         {"band-fraction", &o.band_fraction},
-        {"band-smoothness", &o.band_smoothness}};
+        {"band-smoothness", &o.band_smoothness},
+        {"mark-outlier-margin", &o.mark_outlier_margin},
+        {"mark-edge-px", &o.mark_edge_px},
+        {"mark-edge-factor", &o.mark_edge_factor},
+        {"soft-mark-weight", &o.soft_mark_weight},
+        {"seed-growth-fraction", &o.seed_growth_fraction},
+        {"body-prior-weight", &o.body_prior_weight},
+        {"body-reach-fraction", &o.body_reach_fraction}};
     add_tuning_options(*cmd, "SegmentationOptions", tuning);
     // WrinkleOptions members exposed for tuning the fold detector with --scale-check.
     vision::WrinkleOptions& w = args->garment.wrinkles;
