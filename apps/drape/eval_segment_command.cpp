@@ -501,7 +501,8 @@ void add_eval_segment_command(CLI::App& app) {
         {"soft-mark-weight", &o.soft_mark_weight},
         {"seed-growth-fraction", &o.seed_growth_fraction},
         {"body-prior-weight", &o.body_prior_weight},
-        {"body-reach-fraction", &o.body_reach_fraction}};
+        {"body-reach-fraction", &o.body_reach_fraction},
+        {"sparse-marks-fraction", &o.sparse_marks_fraction}};
     add_tuning_options(*cmd, "SegmentationOptions", tuning);
     // WrinkleOptions members exposed for tuning the fold detector with --scale-check.
     vision::WrinkleOptions& w = args->garment.wrinkles;

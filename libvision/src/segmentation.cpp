@@ -43,6 +43,8 @@ bool SegmentationOptions::is_valid(std::string* why) const {
     if (!(soft_mark_weight >= 0)) return fail("soft_mark_weight must be >= 0");
     if (!(seed_growth_fraction >= 0)) return fail("seed_growth_fraction must be >= 0");
     if (!(body_prior_weight >= 0)) return fail("body_prior_weight must be >= 0");
+    if (!(sparse_marks_fraction >= 0) || sparse_marks_fraction > 1)
+        return fail("sparse_marks_fraction must be in [0, 1]");
     if (!(body_reach_fraction > 0)) return fail("body_reach_fraction must be > 0");
     if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
     if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
@@ -567,6 +569,13 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
     p.soft = trust.soft;
     p.soft_weight = float(o.soft_mark_weight);
     const cv::Mat trusted = (trust.hard != 255) | (trust.soft != 255);
+    // Sparse marks (a few clicks) leave most pixels far from every mark, so the distance
+    // prior, made for strokes through every region, would outweigh the colours: its
+    // weight falls in proportion to the marked share below `sparse_marks_fraction`, to
+    // a quarter at most.
+    const double marked = double(cv::countNonZero(strokes != kUnmarked)) / double(strokes.total());
+    const double sparse_factor =
+        o.sparse_marks_fraction > 0 ? std::clamp(marked / o.sparse_marks_fraction, 0.25, 1.0) : 1.0;
     for (size_t k = 0; k < ids.size(); ++k) {
         cv::Mat seed = ((trust.hard == int(k)) | (trust.soft == int(k)));
         if (cv::countNonZero(seed) == 0) seed = marks == int(k);  // every mark dropped: keep them
@@ -576,7 +585,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
         const double grow = o.seed_growth_fraction * body_h * s;
         p.model_seed.push_back(grow > 0 ? cv::Mat(d <= float(grow)) : seed);
         const double f = ids[k] == o.table.background_id() ? o.background_distance_factor : 1.0;
-        p.prior.push_back(d * (f * o.stroke_distance_weight / (body_h * s)));
+        p.prior.push_back(d * (f * sparse_factor * o.stroke_distance_weight / (body_h * s)));
     }
     // The person is where the joints are: every class but the background costs more the
     // farther a pixel lies beyond `body_reach_fraction` of the body height from the

@@ -277,7 +277,10 @@ cv::Mat core_of(const Region& r, double depth) {
 
 struct Mark {
     int id = 0;
-    bool first = false;                ///< a region's first mark: drawn before the others
+    /// Order within its region: every region's marks of rank 0 are drawn first (whatever
+    /// the budget), then those of rank 1, ...: a person marks every region before adding
+    /// more marks anywhere, not most of them in the (largest) background.
+    int rank = 0;
     std::vector<cv::Point> own;        ///< pixels inside the region (full-image coordinates)
     std::vector<cv::Point> stray;      ///< pixels past the region's border (sloppy only)
 };
@@ -319,19 +322,35 @@ std::vector<std::vector<cv::Point>> dash_lines(const Region& r, const cv::Mat& a
     return lines;
 }
 
-/// Draws marks in order (each region's first mark first, the rest shuffled) while the
-/// marked total stays within the budget; stray pixels are added by the caller.
+/// The drawing order of a region's dashes: the longest first (rank 0, so that no region
+/// is marked by a sliver alone), the others in a seeded random order.
+std::vector<int> ranks(const std::vector<std::vector<cv::Point>>& lines, Rng& rng) {
+    size_t best = 0;
+    for (size_t k = 1; k < lines.size(); ++k)
+        if (lines[k].size() > lines[best].size()) best = k;
+    std::vector<int> order;
+    for (int k = 1; k < int(lines.size()); ++k) order.push_back(k);
+    rng.shuffle(order);
+    std::vector<int> rank(lines.size(), 0);
+    size_t next = 0;
+    for (size_t k = 0; k < lines.size(); ++k)
+        if (k != best) rank[k] = order[next++];
+    return rank;
+}
+
+/// Draws marks by rank (ties in a seeded random order) while the marked total stays
+/// within the budget; stray pixels are added by the caller.
 cv::Mat draw_marks(const cv::Mat& labels, std::vector<Mark>& marks, double budget, Rng& rng,
                    std::vector<size_t>* kept = nullptr) {
     rng.shuffle(marks);
-    std::stable_sort(marks.begin(), marks.end(), [](const Mark& a, const Mark& b) { return a.first > b.first; });
+    std::stable_sort(marks.begin(), marks.end(), [](const Mark& a, const Mark& b) { return a.rank < b.rank; });
     cv::Mat out(labels.size(), CV_8UC1, cv::Scalar(kUnmarked));
     double marked = 0;
     for (size_t k = 0; k < marks.size(); ++k) {
         const Mark& m = marks[k];
         int add = 0;
         for (const auto& p : m.own) add += out.at<std::uint8_t>(p) == kUnmarked;
-        if (marked + add > budget) continue;
+        if (m.rank > 0 && marked + add > budget) continue;
         for (const auto& p : m.own) out.at<std::uint8_t>(p) = std::uint8_t(m.id);
         marked += add;
         if (kept) kept->push_back(k);
@@ -362,11 +381,11 @@ cv::Mat dash_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOpti
     for (const Region& r : regions_of(labels, o.min_region_fraction * double(labels.total()), 0)) {
         const cv::Mat core = core_of(r, depth);
         const auto lines = dash_lines(r, core, len, row_step, gap, rng);
-        const size_t first = size_t(rng.integer(0, int(lines.size()) - 1));
+        const std::vector<int> rank = ranks(lines, rng);
         for (size_t k = 0; k < lines.size(); ++k) {
             Mark m;
             m.id = r.id;
-            m.first = k == first;
+            m.rank = rank[k];
             for (const auto& p : widen(lines[k], width, labels.size()))
                 if (labels.at<std::uint8_t>(p) == r.id) m.own.push_back(p);
             if (!m.own.empty()) marks.push_back(std::move(m));
@@ -405,7 +424,7 @@ cv::Mat dot_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOptio
         for (size_t d = 0; d < dots.size(); ++d) {
             Mark m;
             m.id = r.id;
-            m.first = d == 0;
+            m.rank = int(d);
             for (int dy = -radius; dy <= radius; ++dy)
                 for (int dx = -radius; dx <= radius; ++dx) {
                     if (dx * dx + dy * dy > radius * radius) continue;
@@ -434,7 +453,7 @@ cv::Mat sloppy_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOp
         if (lines.empty()) continue;
         cv::Mat outside_dist;  // distance of crop pixels to the region
         cv::distanceTransform(~r.mask, outside_dist, cv::DIST_L2, 3);
-        const size_t first = size_t(rng.integer(0, int(lines.size()) - 1));
+        const std::vector<int> rank = ranks(lines, rng);
         for (size_t k = 0; k < lines.size(); ++k) {
             auto& line = lines[k];
             // A drifting hand: a slope of up to +-0.1, and overshoot past the run's ends.
@@ -446,7 +465,7 @@ cv::Mat sloppy_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOp
                 drawn.emplace_back(x, a.y + int(std::lround(slope * (x - a.x))));
             Mark m;
             m.id = r.id;
-            m.first = k == first;
+            m.rank = rank[k];
             for (const auto& p : widen(drawn, width, labels.size())) {
                 if (p.x < 0 || p.x >= labels.cols) continue;
                 if (labels.at<std::uint8_t>(p) == r.id) {
@@ -486,7 +505,7 @@ cv::Mat sloppy_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOp
     if (ids.size() >= 2 && !kept.empty()) {
         for (int attempt = 0; attempt < 20 && wrong < wrong_budget; ++attempt) {
             const Mark& m = marks[kept[size_t(rng.integer(0, int(kept.size()) - 1))]];
-            if (m.first) continue;  // keep every region's first stroke right
+            if (m.rank == 0) continue;  // keep every region's first stroke right
             int other = ids[size_t(rng.integer(0, int(ids.size()) - 2))];
             if (other >= m.id) other = ids[size_t(std::find(ids.begin(), ids.end(), other) - ids.begin()) + 1];
             for (const auto& p : m.own) {

@@ -135,3 +135,56 @@ TEST_CASE("stroke styles parse and reject bad input", "[vision][strokes][styles]
     const test::SyntheticFigure f = test::make_figure();
     CHECK(cv::countNonZero(simulate_strokes(f.labels, StrokeStyle::medial, 9) != simulate_strokes(f.labels)) == 0);
 }
+
+TEST_CASE("stroke-guided segmentation holds with dashes, dots and sloppy strokes",
+          "[vision][segmentation][styles]") {
+    const test::SyntheticFigure f = test::make_figure();
+    for (StrokeStyle st : {StrokeStyle::dashes, StrokeStyle::dots, StrokeStyle::sloppy})
+        for (std::uint64_t seed : {1u}) {
+            const cv::Mat strokes = simulate_strokes(f.labels, st, seed);
+            Segmentation seg;
+            const SegmentationSummary s = segment_with_strokes(f.photo, strokes, &f.joints, {}, seg);
+            INFO(to_string(st) << " seed " << seed << ": " << s.brief_report());
+            REQUIRE(s.usable());
+            for (int id : {51, 42}) {
+                const double v = vision::iou(seg.labels == id, f.labels == id);
+                INFO("class " << id << " IoU " << v);
+                CHECK(v > 0.95);
+            }
+        }
+}
+
+TEST_CASE("a few clicks: background of a garment's colour far from the person stays background",
+          "[vision][segmentation][styles]") {
+    // The drawn figure with two patches of the t-shirt's and the skirt's colours in the
+    // background, far from the skeleton (a poster, a parked car): the background's few
+    // clicks lie far from them, the garments' colour models match them.
+    // The figure's 400 x 600 frame widened by 200 px of background on each side.
+    test::SyntheticFigure f = test::make_figure();
+    cv::copyMakeBorder(f.photo, f.photo, 0, 0, 200, 200, cv::BORDER_REFLECT);
+    cv::copyMakeBorder(f.labels, f.labels, 0, 0, 200, 200, cv::BORDER_CONSTANT, cv::Scalar(0));
+    for (auto& j : f.joints.px) j.x() += 200;
+    cv::rectangle(f.photo, cv::Rect(640, 330, 120, 200), cv::Scalar(60, 50, 170), cv::FILLED);
+    cv::rectangle(f.photo, cv::Rect(30, 20, 120, 150), cv::Scalar(190, 120, 60), cv::FILLED);
+    SegmentationOptions without = SegmentationOptions{};
+    without.body_prior_weight = 0;
+    without.sparse_marks_fraction = 0;
+    double sum_with = 0, sum_without = 0;
+    for (std::uint64_t seed : {1u, 2u}) {
+        const cv::Mat dots = simulate_strokes(f.labels, StrokeStyle::dots, seed);
+        Segmentation a, b;
+        REQUIRE(segment_with_strokes(f.photo, dots, &f.joints, {}, a).usable());
+        REQUIRE(segment_with_strokes(f.photo, dots, &f.joints, without, b).usable());
+        for (int id : {51, 42}) {
+            const double va = vision::iou(a.labels == id, f.labels == id);
+            const double vb = vision::iou(b.labels == id, f.labels == id);
+            INFO("seed " << seed << " class " << id << ": IoU " << vb << " without the skeleton and sparse-mark priors, "
+                         << va << " with");
+            CHECK(va > 0.9);
+            sum_with += va;
+            sum_without += vb;
+        }
+    }
+    INFO("mean IoU without " << sum_without / 4 << ", with " << sum_with / 4);
+    CHECK(sum_with >= sum_without - 4 * 0.01);
+}

@@ -61,8 +61,11 @@ struct SegmentationOptions {
     /// Strokes mode with joints: every class but the background costs up to this much more
     /// beyond `body_reach_fraction` x body height from the skeleton (ramping up over one
     /// more such distance). 0 = off.
-    double body_prior_weight = 0.0;         ///< >= 0
-    double body_reach_fraction = 0.15;      ///< > 0
+    double body_prior_weight = 10.0;        ///< >= 0
+    /// Strokes mode: when fewer than this fraction of the pixels are marked, the stroke
+    /// distance weight is scaled by (marked fraction / this), down to a quarter. 0 = off.
+    double sparse_marks_fraction = 0.01;    ///< in [0, 1]
+    double body_reach_fraction = 0.12;      ///< > 0
     /// Automatic mode: weight of the pose-derived spatial prior.
     double layout_weight = 1.0;             ///< >= 0
     bool refine_boundaries = true;
