@@ -1,10 +1,12 @@
-// drape eval-segment DIR [--mode strokes|auto|both] [--scale-check] [--limit N] --out RESULT.json
+// drape eval-segment DIR [--mode strokes|auto|both] [--split tune|heldout|all]
+//                   [--scale-check] [--limit N] --out RESULT.json
 //
 // Evaluates garment parsing on a folder in the ../shared/data/photos layout
 // (images/NAME.jpg, labels/NAME.png, joints/NAME.json, optional index.csv): per photo and
 // mean IoU per garment against the hand labels, garment-type accuracy and time
 // (docs/vision.md, "Evaluation").
 #include "commands.hpp"
+#include "image_io.hpp"
 #include "json_io.hpp"
 #include "vision_json.hpp"
 
@@ -12,6 +14,7 @@
 #include <drape/vision/classify_garment.hpp>
 #include <drape/vision/garment_result.hpp>
 #include <drape/vision/image_io.hpp>
+#include <drape/vision/photo_split.hpp>
 #include <drape/vision/segmentation.hpp>
 #include <drape/vision/segmentation_score.hpp>
 #include <drape/vision/strokes.hpp>
@@ -47,8 +50,13 @@ struct EvalArgs {
     std::string dir;
     std::string mode = "both";
     std::string out;
+    std::string split = "all";
+    std::string stroke_style = "medial";
+    std::uint64_t stroke_seed = 1;
     int limit = 0;
     bool scale_check = false;
+    bool iou_only = false;
+    std::string save_dir;
     std::vector<std::string> names;
     vision::SegmentationOptions options;
     vision::GarmentOptions garment;
@@ -131,25 +139,93 @@ struct ModeTotals {
 
 using Clock = std::chrono::steady_clock;
 
-nlohmann::json evaluate(const std::string& mode, const cv::Mat& photo, const cv::Mat& gt,
+void add_totals(ModeTotals& sum, const ModeTotals& t) {
+    sum.iou_sum += t.iou_sum;
+    sum.garments += t.garments;
+    sum.types_right += t.types_right;
+    sum.seconds_sum += t.seconds_sum;
+    sum.seconds_max = std::max(sum.seconds_max, t.seconds_max);
+    sum.photos += t.photos;
+    for (const auto& [type, v] : t.iou_by_type) {
+        sum.iou_by_type[type].first += v.first;
+        sum.iou_by_type[type].second += v.second;
+    }
+}
+
+nlohmann::json totals_json(const ModeTotals& t) {
+    nlohmann::json by_type = nlohmann::json::object();
+    for (const auto& [type, v] : t.iou_by_type)
+        by_type[type] = {{"mean_iou", v.first / v.second}, {"garments", v.second}};
+    return {{"photos", t.photos},
+            {"garments", t.garments},
+            {"mean_garment_iou", t.iou_sum / std::max(1, t.garments)},
+            {"type_accuracy", double(t.types_right) / std::max(1, t.garments)},
+            {"mean_seconds_per_photo", t.seconds_sum / std::max(1, t.photos)},
+            {"max_seconds_per_photo", t.seconds_max},
+            {"iou_by_true_type", by_type}};
+}
+
+void print_totals(const std::string& label, const ModeTotals& t) {
+    std::cout << label << ": mean garment IoU " << std::fixed << std::setprecision(3)
+              << t.iou_sum / std::max(1, t.garments) << " over " << t.garments
+              << " garments (" << t.photos << " photos), type accuracy " << std::setprecision(1)
+              << 100.0 * t.types_right / std::max(1, t.garments) << " %, "
+              << std::setprecision(2) << t.seconds_sum / std::max(1, t.photos)
+              << " s/photo (max " << t.seconds_max << " s)\n";
+}
+
+/// The key of a stroke style in the result: "strokes" for the medial axis (as before the
+/// styles existed), "strokes-STYLE" for the others.
+std::string strokes_key(vision::StrokeStyle style) {
+    return style == vision::StrokeStyle::medial ? "strokes" : std::string("strokes-") + vision::to_string(style);
+}
+
+/// The simulated user's seed for one photo: the run's seed mixed with the photo's name
+/// (FNV-1a), so every photo gets its own pattern and a run is reproducible.
+std::uint64_t photo_seed(std::uint64_t seed, const std::string& name) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+    return h ^ (seed * 0x9e3779b97f4a7c15ull);
+}
+
+nlohmann::json evaluate(const std::string& mode, std::uint64_t seed, const cv::Mat& photo, const cv::Mat& gt,
                         const vision::Joints& joints, const Parse& truth,
                         const vision::SegmentationOptions& options,
-                        const vision::GarmentOptions& garment_options, ModeTotals& totals) {
+                        const vision::GarmentOptions& garment_options, bool iou_only,
+                        const std::string& save_prefix, ModeTotals& totals) {
     const LabelTable& table = LabelTable::fashionista();
     vision::Segmentation seg;
-    const auto t0 = Clock::now();
     vision::SegmentationSummary summary;
     nlohmann::json j;
-    if (mode == "strokes") {
-        const cv::Mat strokes = vision::simulate_strokes(gt);
+    const bool with_strokes = mode.rfind("strokes", 0) == 0;
+    cv::Mat strokes;  // the simulated user's strokes: not part of the timed work
+    if (with_strokes) {
+        const vision::StrokeStyle style =
+            mode == "strokes" ? vision::StrokeStyle::medial : vision::parse_stroke_style(mode.substr(8));
+        strokes = vision::simulate_strokes(gt, style, seed);
         j["marked_fraction"] = vision::marked_fraction(strokes);
-        const auto ts = Clock::now();
+        j["wrong_mark_fraction"] = vision::wrong_mark_fraction(strokes, gt);
+    }
+    const auto t0 = Clock::now();
+    if (with_strokes) {
         summary = vision::segment_with_strokes(photo, strokes, &joints, options, seg);
-        (void)ts;
     } else {
         summary = vision::segment_automatic(photo, joints, options, seg);
     }
-    const auto garments = vision::describe_garments(photo, seg, joints, table, garment_options);
+    if (!iou_only) vision::describe_garments(photo, seg, joints, table, garment_options);
+    if (!save_prefix.empty()) {
+        cv::Mat overlay = vision::draw_segmentation(photo, seg.labels);
+        if (!strokes.empty()) {
+            const cv::Mat c = vision::colour_strokes(strokes, vision::StrokePalette::fashionista_default());
+            for (int y = 0; y < c.rows; ++y)
+                for (int x = 0; x < c.cols; ++x)
+                    if (c.at<cv::Vec4b>(y, x)[3]) {
+                        const cv::Vec4b v = c.at<cv::Vec4b>(y, x);
+                        overlay.at<cv::Vec3b>(y, x) = cv::Vec3b(v[0], v[1], v[2]);
+                    }
+        }
+        write_png(save_prefix + "_" + mode + ".png", overlay);
+    }
     const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     const Parse pred = parse_of(seg.labels, table, joints, seg.garment_types);
     nlohmann::json per = nlohmann::json::array();
@@ -257,10 +333,27 @@ nlohmann::json scale_check(const cv::Mat& photo, const cv::Mat& gt, const vision
 }
 
 void run_eval(const EvalArgs& args) {
+    if (args.stroke_style != "all") vision::parse_stroke_style(args.stroke_style);  // named error early
     if (args.mode != "strokes" && args.mode != "auto" && args.mode != "both" && args.mode != "none")
         throw InvalidInput("--mode '" + args.mode + "' is not one of strokes, auto, both, none");
+    const vision::PhotoSplit split = vision::parse_photo_split(args.split);
     const fs::path dir(args.dir);
     auto photos = list_photos(dir);
+    // The split's part of every photo, from the sorted names of the whole folder
+    // (docs/vision.md, "Evaluation protocol"), before --names or --limit select photos.
+    std::map<std::string, vision::PhotoSplit> part_of_photo;
+    {
+        std::vector<std::string> all_names;
+        for (const auto& p : photos) all_names.push_back(p.first);
+        const auto parts = vision::photo_split_parts(all_names);
+        for (size_t i = 0; i < all_names.size(); ++i) part_of_photo[all_names[i]] = parts[i];
+        if (split != vision::PhotoSplit::all) {
+            std::vector<std::pair<std::string, std::string>> kept;
+            for (const auto& p : photos)
+                if (part_of_photo.at(p.first) == split) kept.push_back(p);
+            photos = kept;
+        }
+    }
     if (!args.names.empty()) {
         std::vector<std::pair<std::string, std::string>> kept;
         for (const auto& p : photos)
@@ -271,10 +364,20 @@ void run_eval(const EvalArgs& args) {
     if (args.limit > 0 && int(photos.size()) > args.limit) photos.resize(size_t(args.limit));
     if (photos.empty()) throw InvalidInput("no photo to evaluate in '" + args.dir + "'");
     std::vector<std::string> modes;
-    if (args.mode == "strokes" || args.mode == "both") modes.push_back("strokes");
+    if (args.mode == "strokes" || args.mode == "both") {
+        if (args.stroke_style == "all") {
+            for (auto st : {vision::StrokeStyle::medial, vision::StrokeStyle::dashes, vision::StrokeStyle::dots,
+                            vision::StrokeStyle::sloppy})
+                modes.push_back(strokes_key(st));
+        } else {
+            modes.push_back(strokes_key(vision::parse_stroke_style(args.stroke_style)));
+        }
+    }
     if (args.mode == "auto" || args.mode == "both") modes.push_back("auto");
     const LabelTable& table = LabelTable::fashionista();
+    // Totals per mode and per part of the split (tune, heldout).
     std::map<std::string, ModeTotals> totals;
+    std::map<std::string, std::map<std::string, ModeTotals>> totals_by_part;
     ScaleCheckTotals scale_totals;
     nlohmann::json per_photo = nlohmann::json::array();
     for (const auto& [name, category] : photos) {
@@ -284,14 +387,21 @@ void run_eval(const EvalArgs& args) {
             read_vision_joints(dir / "joints" / (name + ".json"), photo.cols, photo.rows);
         const Parse truth = parse_of(gt, table, joints, {});
         nlohmann::json pj;
+        const std::string part = vision::to_string(part_of_photo.at(name));
         pj["name"] = name;
         pj["category"] = category;
+        pj["split"] = part;
         if (!category.empty() && truth.types.count(GarmentPart::lower) &&
             std::string(vision::to_string(truth.types.at(GarmentPart::lower))) != category)
             pj["warning"] = "category in index.csv differs from the labelled lower garment";
-        std::cout << name << " (" << category << "):";
+        std::cout << name << " (" << category << ", " << part << "):";
         for (const auto& m : modes) {
-            pj[m] = evaluate(m, photo, gt, joints, truth, args.options, args.garment, totals[m]);
+            ModeTotals one;
+            pj[m] = evaluate(m, photo_seed(args.stroke_seed, name), photo, gt, joints, truth, args.options,
+                             args.garment, args.iou_only,
+                             args.save_dir.empty() ? "" : (fs::path(args.save_dir) / name).string(), one);
+            add_totals(totals[m], one);
+            add_totals(totals_by_part[m][part], one);
             std::cout << "  " << m << " IoU " << std::fixed << std::setprecision(3)
                       << pj[m]["mean_iou"].get<double>() << " (" << std::setprecision(2)
                       << pj[m]["seconds"].get<double>() << " s)";
@@ -307,24 +417,16 @@ void run_eval(const EvalArgs& args) {
     result["format"] = "drape.segment_eval";
     result["version"] = 1;
     result["folder"] = args.dir;
+    result["split"] = args.split;
+    result["stroke_seed"] = args.stroke_seed;
     result["photos"] = per_photo;
     for (const auto& [m, t] : totals) {
-        nlohmann::json by_type = nlohmann::json::object();
-        for (const auto& [type, v] : t.iou_by_type)
-            by_type[type] = {{"mean_iou", v.first / v.second}, {"garments", v.second}};
-        result["summary"][m] = {{"photos", t.photos},
-                                {"garments", t.garments},
-                                {"mean_garment_iou", t.iou_sum / std::max(1, t.garments)},
-                                {"type_accuracy", double(t.types_right) / std::max(1, t.garments)},
-                                {"mean_seconds_per_photo", t.seconds_sum / std::max(1, t.photos)},
-                                {"max_seconds_per_photo", t.seconds_max},
-                                {"iou_by_true_type", by_type}};
-        std::cout << m << ": mean garment IoU " << std::setprecision(3)
-                  << t.iou_sum / std::max(1, t.garments) << " over " << t.garments
-                  << " garments, type accuracy "
-                  << 100.0 * t.types_right / std::max(1, t.garments) << " %, "
-                  << std::setprecision(2) << t.seconds_sum / std::max(1, t.photos)
-                  << " s/photo (max " << t.seconds_max << " s)\n";
+        result["summary"][m] = totals_json(t);
+        for (const auto& [part, tp] : totals_by_part[m]) {
+            result["summary"][m]["by_split"][part] = totals_json(tp);
+            print_totals(m + " [" + part + "]", tp);
+        }
+        print_totals(m, t);
     }
     if (args.scale_check) {
         const auto& t = scale_totals;
@@ -368,6 +470,19 @@ void add_eval_segment_command(CLI::App& app) {
     cmd->add_option("--out", args->out, "result JSON to write")->required();
     cmd->add_option("--limit", args->limit, "evaluate only the first N photos");
     cmd->add_option("--names", args->names, "evaluate only these photos (NAME without extension)");
+    cmd->add_option("--stroke-style", args->stroke_style,
+                    "medial (default) | dashes | dots | sloppy | all: the simulated user's strokes "
+                    "(docs/vision.md, \"Simulated strokes\"); summaries strokes, strokes-dashes, ...");
+    cmd->add_option("--stroke-seed", args->stroke_seed,
+                    "seed of the simulated user (mixed with each photo's name; default 1)");
+    cmd->add_option("--split", args->split,
+                    "tune | heldout | all (default): the part of the folder's fixed split to evaluate "
+                    "(names sorted; even 0-based positions tune, odd held-out; docs/vision.md)");
+    cmd->add_flag("--iou-only", args->iou_only,
+                  "skip describe_garments (features, wrinkles): for tuning sweeps; the time is then "
+                  "the segmentation's alone");
+    cmd->add_option("--save-overlays", args->save_dir,
+                    "write DIR/NAME_MODE.png: the parse over the photo, with the simulated strokes drawn in");
     cmd->add_flag("--scale-check", args->scale_check,
                   "also measure the wrinkle density of the hand-labelled garments at x0.5 and x2");
     // SegmentationOptions members exposed for tuning (docs/notes/vision.md, "Tuning tried").
@@ -379,7 +494,15 @@ void add_eval_segment_command(CLI::App& app) {
         {"superpixel-fraction", &o.superpixel_fraction},
         {"background-distance-factor", &o.background_distance_factor},
         {"band-fraction", &o.band_fraction},
-        {"band-smoothness", &o.band_smoothness}};
+        {"band-smoothness", &o.band_smoothness},
+        {"mark-outlier-margin", &o.mark_outlier_margin},
+        {"mark-edge-px", &o.mark_edge_px},
+        {"mark-edge-factor", &o.mark_edge_factor},
+        {"soft-mark-weight", &o.soft_mark_weight},
+        {"seed-growth-fraction", &o.seed_growth_fraction},
+        {"body-prior-weight", &o.body_prior_weight},
+        {"body-reach-fraction", &o.body_reach_fraction},
+        {"sparse-marks-fraction", &o.sparse_marks_fraction}};
     add_tuning_options(*cmd, "SegmentationOptions", tuning);
     // WrinkleOptions members exposed for tuning the fold detector with --scale-check.
     vision::WrinkleOptions& w = args->garment.wrinkles;

@@ -1,5 +1,5 @@
 // drape segment IMAGE --joints J.json [--strokes S.png] [--palette P.json] [--hint TYPE] [--height M] --out DIR
-// drape strokes LABELS.png --out S.png [--colour] [--palette P.json]
+// drape strokes LABELS.png --out S.png [--style medial|dashes|dots|sloppy] [--seed N] [--colour] [--palette P.json]
 #include "commands.hpp"
 #include "image_io.hpp"
 #include "json_io.hpp"
@@ -129,7 +129,8 @@ void add_segment_command(CLI::App& app) {
 
 void add_strokes_command(CLI::App& app) {
     struct StrokesArgs {
-        std::string labels, out, palette;
+        std::string labels, out, palette, style = "medial";
+        std::uint64_t seed = 1;
         bool colour = false;
     };
     auto args = std::make_shared<StrokesArgs>();
@@ -141,13 +142,17 @@ void add_strokes_command(CLI::App& app) {
     cmd->add_flag("--colour", args->colour,
                   "write colour-coded strokes (RGBA, transparent where unmarked) as a person would draw them");
     cmd->add_option("--palette", args->palette, "palette JSON for --colour (default: the built-in palette)");
+    cmd->add_option("--style", args->style,
+                    "medial (default) | dashes | dots | sloppy: how the simulated user draws (docs/vision.md)");
+    cmd->add_option("--seed", args->seed, "seed of the dashes, dots and sloppy styles (default 1)");
     cmd->callback([args] {
+        const vision::StrokeStyle style = vision::parse_stroke_style(args->style);
         if (!args->palette.empty() && !args->colour)
             throw InvalidInput("--palette is for --colour; add --colour or drop --palette");
         const vision::LabelTable& table = vision::LabelTable::fashionista();
         const vision::StrokePalette palette = read_stroke_palette(args->palette, table);
         const cv::Mat gt = vision::load_label_map(args->labels, "labels");
-        const cv::Mat strokes = vision::simulate_strokes(gt);
+        const cv::Mat strokes = vision::simulate_strokes(gt, style, args->seed);
         if (args->colour) {
             std::vector<int> missing;
             write_png(args->out, vision::colour_strokes(strokes, palette, &missing));

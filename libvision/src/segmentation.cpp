@@ -37,6 +37,15 @@ bool SegmentationOptions::is_valid(std::string* why) const {
     if (!(background_distance_factor >= 0))
         return fail("background_distance_factor must be >= 0");
     if (!(layout_weight >= 0)) return fail("layout_weight must be >= 0");
+    if (!(mark_outlier_margin >= 0)) return fail("mark_outlier_margin must be >= 0");
+    if (!(mark_edge_px >= 0)) return fail("mark_edge_px must be >= 0");
+    if (!(mark_edge_factor > 0)) return fail("mark_edge_factor must be > 0");
+    if (!(soft_mark_weight >= 0)) return fail("soft_mark_weight must be >= 0");
+    if (!(seed_growth_fraction >= 0)) return fail("seed_growth_fraction must be >= 0");
+    if (!(body_prior_weight >= 0)) return fail("body_prior_weight must be >= 0");
+    if (!(sparse_marks_fraction >= 0) || sparse_marks_fraction > 1)
+        return fail("sparse_marks_fraction must be in [0, 1]");
+    if (!(body_reach_fraction > 0)) return fail("body_reach_fraction must be > 0");
     if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
     if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
     if (!(band_fraction >= 0) || band_fraction > 0.2) return fail("band_fraction must be in [0, 0.2]");
@@ -68,6 +77,10 @@ struct Problem {
     cv::Mat hard;                       ///< CV_8UC1 label index or 255
     std::vector<cv::Mat> prior;         ///< CV_32F per label (empty Mat = none)
     std::vector<cv::Mat> model_seed;    ///< CV_8UC1 per label: first colour model pixels
+    /// Strokes mode: marks taken as soft evidence (CV_8UC1 label index or 255; empty =
+    /// none): every other label costs `soft_weight` more there.
+    cv::Mat soft;
+    float soft_weight = 0;
 };
 
 /// Stage 1: rounds of (colour models, alpha-expansion). Returns label indices (CV_8UC1).
@@ -82,6 +95,7 @@ cv::Mat solve(const cv::Mat& small, const Problem& p, const SegmentationOptions&
     detail::set_contrast_weights(small, o.smoothness, e);
     std::vector<std::uint8_t> lab(static_cast<size_t>(n), 0);
     const auto* hard = p.hard.ptr<std::uint8_t>(0);
+    const auto* soft = p.soft.empty() ? nullptr : p.soft.ptr<std::uint8_t>(0);
     const auto* bin = bins.ptr<int>(0);
     for (int round = 0; round < o.rounds; ++round) {
         std::vector<detail::ColourHistogram> models(L, detail::ColourHistogram(o.histogram_bins));
@@ -93,6 +107,7 @@ cv::Mat solve(const cv::Mat& small, const Problem& p, const SegmentationOptions&
                 models[lab[static_cast<size_t>(i)]].add(bin[i]);
             }
             if (hard[i] != 255) models[hard[i]].add(bin[i], 2.0);
+            if (soft && soft[i] != 255) models[soft[i]].add(bin[i], 2.0);
         }
         for (auto& m : models) m.finish();
         e.unary.assign(static_cast<size_t>(n) * L, 0.f);
@@ -102,6 +117,7 @@ cv::Mat solve(const cv::Mat& small, const Problem& p, const SegmentationOptions&
                 u[l] = models[l].total() > 0 ? models[l].cost(bin[i]) : 1e4f;
                 if (!p.prior[l].empty()) u[l] += p.prior[l].ptr<float>(0)[i];
                 if (hard[i] != 255 && hard[i] != l) u[l] = 1e5f;
+                if (soft && soft[i] != 255 && soft[i] != l) u[l] += p.soft_weight;
             }
             if (round == 0)
                 lab[static_cast<size_t>(i)] =
@@ -339,6 +355,104 @@ double mean_colour_step(const cv::Mat& image) {
     return n > 0 ? sum / double(n) : 1.0;
 }
 
+/// Per-pixel colour-edge strength of `image`: the largest RGB difference to a 4-neighbour.
+cv::Mat colour_edge_strength(const cv::Mat& image) {
+    cv::Mat out(image.size(), CV_32F, cv::Scalar(0));
+    for (int y = 0; y < image.rows; ++y)
+        for (int x = 0; x < image.cols; ++x) {
+            const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
+            float best = 0;
+            for (const cv::Point q : {cv::Point(x + 1, y), cv::Point(x - 1, y), cv::Point(x, y + 1), cv::Point(x, y - 1)}) {
+                if (q.x < 0 || q.y < 0 || q.x >= image.cols || q.y >= image.rows) continue;
+                const cv::Vec3b cn = image.at<cv::Vec3b>(q);
+                const float db = float(c[0]) - cn[0], dg = float(c[1]) - cn[1], dr = float(c[2]) - cn[2];
+                best = std::max(best, std::sqrt(db * db + dg * dg + dr * dr));
+            }
+            out.at<float>(y, x) = best;
+        }
+    return out;
+}
+
+/// How far each mark is to be trusted (docs/vision.md, "Segmentation", strokes): a mark
+/// whose colour is far likelier under another marked class's colour model than under its
+/// own is dropped (a slip of the pen, a stroke past a border); a mark within
+/// `edge_px` of a strong colour edge is soft evidence; the others are hard.
+struct MarkTrust {
+    cv::Mat hard;   ///< CV_8UC1 label index or 255
+    cv::Mat soft;   ///< CV_8UC1 label index or 255
+    long long dropped = 0;
+    std::vector<detail::ColourHistogram> models;  ///< per label, from the kept marks (outlier test on)
+    cv::Mat edge_distance;                        ///< CV_32F px to a strong colour edge (edge test on)
+
+    /// Whether a mark of label `k` with colour bin `bin` passes the outlier test.
+    bool consistent(int k, int bin, double margin) const {
+        if (models.empty() || models[size_t(k)].total() <= 0) return true;
+        float other = std::numeric_limits<float>::max();
+        for (size_t l = 0; l < models.size(); ++l)
+            if (int(l) != k && models[l].total() > 0) other = std::min(other, models[l].cost(bin));
+        return models[size_t(k)].cost(bin) - other <= margin;
+    }
+};
+
+MarkTrust trust_marks(const cv::Mat& small, const cv::Mat& marks, int labels,
+                      const SegmentationOptions& o, double mean_step) {
+    MarkTrust t;
+    t.hard = marks.clone();
+    t.soft = cv::Mat(marks.size(), CV_8UC1, cv::Scalar(255));
+    const size_t L = size_t(labels);
+    if (o.mark_outlier_margin > 0 && L > 1) {
+        const cv::Mat bins = detail::colour_bins(small, o.histogram_bins);
+        const int n = int(marks.total());
+        cv::Mat keep = marks.clone();
+        // Two passes: the models of the second leave out the first's outliers.
+        for (int pass = 0; pass < 2; ++pass) {
+            t.models.assign(L, detail::ColourHistogram(o.histogram_bins));
+            for (int i = 0; i < n; ++i)
+                if (keep.data[i] != 255) t.models[keep.data[i]].add(bins.ptr<int>(0)[i]);
+            for (auto& m : t.models) m.finish();
+            keep = marks.clone();
+            for (int i = 0; i < n; ++i) {
+                const int k = marks.data[i];
+                if (k != 255 && !t.consistent(k, bins.ptr<int>(0)[i], o.mark_outlier_margin)) keep.data[i] = 255;
+            }
+        }
+        for (int i = 0; i < n; ++i)
+            if (marks.data[i] != 255 && keep.data[i] == 255) ++t.dropped;
+        t.hard = keep;
+    }
+    if (o.mark_edge_px > 0) {
+        const cv::Mat strong = colour_edge_strength(small) > float(o.mark_edge_factor * mean_step);
+        cv::Mat& d = t.edge_distance;
+        cv::distanceTransform(~strong, d, cv::DIST_L2, 3, CV_32F);
+        for (size_t i = 0; i < t.hard.total(); ++i)
+            if (t.hard.data[i] != 255 && d.ptr<float>(0)[i] < float(o.mark_edge_px)) {
+                t.soft.data[i] = t.hard.data[i];
+                t.hard.data[i] = 255;
+            }
+    }
+    return t;
+}
+
+/// Distance (px) of every pixel of an image of `size` to the skeleton of `j` (joints in
+/// that image's pixels): the legs' chain, the arms' chain through the shoulders, the
+/// torso's sides, the spine (neck to mid-hip) and the neck to the head.
+cv::Mat skeleton_distance(cv::Size size, const Joints& j) {
+    auto at = [](const Eigen::Vector2d& p) { return cv::Point(int(std::floor(p.x())), int(std::floor(p.y()))); };
+    std::vector<std::vector<cv::Point>> chains(2);
+    for (int k = 0; k < 6; ++k) {
+        chains[0].push_back(at(j.px[size_t(k)]));       // right ankle ... left ankle
+        chains[1].push_back(at(j.px[size_t(k + 6)]));   // right hand ... left hand
+    }
+    chains.push_back({at(j[Joint::head]), at(j[Joint::neck]), at(j.mid_hip())});
+    chains.push_back({at(j[Joint::right_shoulder]), at(j[Joint::right_hip])});
+    chains.push_back({at(j[Joint::left_shoulder]), at(j[Joint::left_hip])});
+    cv::Mat not_bone(size, CV_8UC1, cv::Scalar(255));
+    cv::polylines(not_bone, chains, false, cv::Scalar(0), 1, cv::LINE_8);
+    cv::Mat d;
+    cv::distanceTransform(not_bone, d, cv::DIST_L2, 3, CV_32F);
+    return d;
+}
+
 int count_classes(const cv::Mat& labels) {
     bool present[256] = {};
     for (auto it = labels.begin<std::uint8_t>(); it != labels.end<std::uint8_t>(); ++it)
@@ -438,24 +552,75 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
     for (size_t k = 0; k < ids.size(); ++k) index_of[ids[k]] = int(k);
     cv::Mat small_strokes;
     cv::resize(strokes, small_strokes, small.size(), 0, 0, cv::INTER_NEAREST);
-    p.hard = cv::Mat(small.size(), CV_8UC1);
-    for (size_t i = 0; i < small_strokes.total(); ++i)
-        p.hard.data[i] = static_cast<std::uint8_t>(index_of[small_strokes.data[i]]);
-    const double body_h = joints ? joints->body_height_px() : 0.9 * image.rows;
-    const double mean_step = mean_colour_step(small);
-    for (size_t k = 0; k < ids.size(); ++k) {
-        cv::Mat seed = small_strokes == ids[k];
-        if (cv::countNonZero(seed) == 0) {
-            // The stroke vanished when shrinking: keep it from the full-size map.
+    // Strokes that vanished when shrinking (thin, short marks): kept from the full-size map.
+    for (size_t k = 0; k < ids.size(); ++k)
+        if (cv::countNonZero(small_strokes == ids[k]) == 0) {
             cv::Mat full = strokes == ids[k], sm;
             cv::resize(full, sm, small.size(), 0, 0, cv::INTER_AREA);
-            seed = sm > 0;
+            small_strokes.setTo(ids[k], (sm > 0) & (small_strokes == kUnmarked));
         }
-        p.model_seed.push_back(seed);
+    cv::Mat marks(small.size(), CV_8UC1);
+    for (size_t i = 0; i < small_strokes.total(); ++i)
+        marks.data[i] = static_cast<std::uint8_t>(index_of[small_strokes.data[i]]);
+    const double body_h = joints ? joints->body_height_px() : 0.9 * image.rows;
+    const double mean_step = mean_colour_step(small);
+    const MarkTrust trust = trust_marks(small, marks, p.labels, o, mean_step);
+    p.hard = trust.hard;
+    p.soft = trust.soft;
+    p.soft_weight = float(o.soft_mark_weight);
+    const cv::Mat trusted = (trust.hard != 255) | (trust.soft != 255);
+    // Sparse marks (a few clicks) leave most pixels far from every mark, so the distance
+    // prior, made for strokes through every region, would outweigh the colours: its
+    // weight falls in proportion to the marked share below `sparse_marks_fraction`, to
+    // a quarter at most.
+    const double marked = double(cv::countNonZero(strokes != kUnmarked)) / double(strokes.total());
+    const double sparse_factor =
+        o.sparse_marks_fraction > 0 ? std::clamp(marked / o.sparse_marks_fraction, 0.25, 1.0) : 1.0;
+    for (size_t k = 0; k < ids.size(); ++k) {
+        cv::Mat seed = ((trust.hard == int(k)) | (trust.soft == int(k)));
+        if (cv::countNonZero(seed) == 0) seed = marks == int(k);  // every mark dropped: keep them
         const cv::Mat d = geodesic_distance(small, seed, o.stroke_colour_weight, mean_step);
+        // First colour model: the marks grown along their geodesic ball, so that a few
+        // clicks sample their region's colours, not a dozen pixels.
+        const double grow = o.seed_growth_fraction * body_h * s;
+        p.model_seed.push_back(grow > 0 ? cv::Mat(d <= float(grow)) : seed);
         const double f = ids[k] == o.table.background_id() ? o.background_distance_factor : 1.0;
-        p.prior.push_back(d * (f * o.stroke_distance_weight / (body_h * s)));
+        p.prior.push_back(d * (f * sparse_factor * o.stroke_distance_weight / (body_h * s)));
     }
+    // The person is where the joints are: every class but the background costs more the
+    // farther a pixel lies beyond `body_reach_fraction` of the body height from the
+    // skeleton (up to `body_prior_weight`, reached one reach farther out). Sparse marks
+    // (a few clicks) leave most of the background far from its own marks.
+    if (joints && o.body_prior_weight > 0) {
+        const double H = body_h * s, r0 = o.body_reach_fraction * H;
+        const cv::Mat d = skeleton_distance(small.size(), joints->scaled(s));
+        cv::Mat ramp = (d - r0) / std::max(1e-6, r0);
+        cv::max(ramp, 0.0, ramp);
+        cv::min(ramp, 1.0, ramp);
+        ramp *= o.body_prior_weight;
+        for (size_t k = 0; k < ids.size(); ++k)
+            if (ids[k] != o.table.background_id()) p.prior[k] += ramp;
+    }
+    // The marks the full-resolution stages keep fixed: the same tests on each full-size
+    // mark (its own colour; the edge distance of its working pixel, in working px).
+    cv::Mat fixed = strokes.clone();
+    if (o.mark_outlier_margin > 0 || o.mark_edge_px > 0) {
+        for (int y = 0; y < strokes.rows; ++y) {
+            const int ys = std::min(small.rows - 1, int(y * s));
+            for (int x = 0; x < strokes.cols; ++x) {
+                std::uint8_t& v = fixed.at<std::uint8_t>(y, x);
+                if (v == kUnmarked) continue;
+                const int xs = std::min(small.cols - 1, int(x * s));
+                const int k = index_of[v];
+                if (!trust.edge_distance.empty() && trust.edge_distance.at<float>(ys, xs) < float(o.mark_edge_px))
+                    v = kUnmarked;
+                else if (!trust.consistent(k, detail::colour_bin(image.at<cv::Vec3b>(y, x), o.histogram_bins),
+                                           o.mark_outlier_margin))
+                    v = kUnmarked;
+            }
+        }
+    }
+    (void)trusted;
     cv::Mat small_idx = solve(small, p, o);
     cv::Mat small_ids(small_idx.size(), CV_8UC1);
     for (size_t i = 0; i < small_idx.total(); ++i)
@@ -463,7 +628,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
     SegmentationSummary summary;
     summary.seconds_graph_cut = since(t0);
     result = Segmentation{};
-    result.labels = refine(image, small_ids, strokes, body_h, o, summary.seconds_refinement);
+    result.labels = refine(image, small_ids, fixed, body_h, o, summary.seconds_refinement);
     finish(result, o, summary);
     summary.seconds = since(t0);
     return summary;

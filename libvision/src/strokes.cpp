@@ -15,6 +15,7 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <random>
 
 namespace drape::vision {
 
@@ -177,6 +178,363 @@ cv::Mat simulate_strokes(const cv::Mat& labels, const StrokeOptions& options) {
 double marked_fraction(const cv::Mat& strokes) {
     if (strokes.empty()) return 0;
     return static_cast<double>(cv::countNonZero(strokes != kUnmarked)) / strokes.total();
+}
+
+// ---- Seeded stroke styles: dashes, dots, sloppy (docs/vision.md, "Simulated strokes") ----
+
+const char* to_string(StrokeStyle style) {
+    switch (style) {
+        case StrokeStyle::dashes: return "dashes";
+        case StrokeStyle::dots: return "dots";
+        case StrokeStyle::sloppy: return "sloppy";
+        case StrokeStyle::medial: break;
+    }
+    return "medial";
+}
+
+StrokeStyle parse_stroke_style(const std::string& text) {
+    for (StrokeStyle s : {StrokeStyle::medial, StrokeStyle::dashes, StrokeStyle::dots, StrokeStyle::sloppy})
+        if (text == to_string(s)) return s;
+    throw InvalidInput("stroke style '" + text + "' is not one of medial, dashes, dots, sloppy");
+}
+
+double wrong_mark_fraction(const cv::Mat& strokes, const cv::Mat& labels) {
+    require(strokes.type() == CV_8UC1 && labels.type() == CV_8UC1 && strokes.size() == labels.size(),
+            "wrong_mark_fraction: strokes and labels must be 8-bit single-channel maps of one size");
+    long long marked = 0, wrong = 0;
+    for (size_t i = 0; i < strokes.total(); ++i) {
+        if (strokes.data[i] == kUnmarked) continue;
+        ++marked;
+        wrong += strokes.data[i] != labels.data[i];
+    }
+    return marked > 0 ? double(wrong) / double(marked) : 0.0;
+}
+
+namespace {
+
+/// Uniform draws from std::mt19937_64, whose output sequence the standard fixes, so the
+/// strokes of a seed are the same on every platform (std's distributions are not).
+struct Rng {
+    std::mt19937_64 g;
+    explicit Rng(std::uint64_t seed) : g(seed) {}
+    double uniform() { return double(g() >> 11) * (1.0 / 9007199254740992.0); }
+    double uniform(double a, double b) { return a + (b - a) * uniform(); }
+    int integer(int a, int b) { return std::min(b, a + int(uniform() * (b - a + 1))); }
+    template <class T> void shuffle(std::vector<T>& v) {
+        for (size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[size_t(integer(0, int(i) - 1))]);
+    }
+};
+
+/// One connected region (8-connected) of a class: its crop (`box`, padded and clipped to the
+/// image), the region's mask in the crop and each crop pixel's distance to the region's
+/// outside (0 outside; the image border counts as outside).
+struct Region {
+    int id = 0;
+    cv::Rect box;
+    cv::Mat mask;  ///< CV_8UC1, 255 inside
+    cv::Mat dist;  ///< CV_32F
+    int area = 0;
+};
+
+std::vector<Region> regions_of(const cv::Mat& labels, double min_area, int pad) {
+    std::vector<Region> out;
+    bool present[256] = {};
+    for (auto it = labels.begin<std::uint8_t>(); it != labels.end<std::uint8_t>(); ++it) present[*it] = true;
+    const cv::Rect frame(0, 0, labels.cols, labels.rows);
+    for (int id = 0; id < kUnmarked; ++id) {
+        if (!present[id]) continue;
+        cv::Mat comp, stats, centroids;
+        const int n = cv::connectedComponentsWithStats(labels == id, comp, stats, centroids, 8, CV_32S);
+        for (int c = 1; c < n; ++c) {
+            const int area = stats.at<int>(c, cv::CC_STAT_AREA);
+            if (area < min_area) continue;
+            Region r;
+            r.id = id;
+            r.area = area;
+            r.box = cv::Rect(stats.at<int>(c, cv::CC_STAT_LEFT) - pad, stats.at<int>(c, cv::CC_STAT_TOP) - pad,
+                             stats.at<int>(c, cv::CC_STAT_WIDTH) + 2 * pad,
+                             stats.at<int>(c, cv::CC_STAT_HEIGHT) + 2 * pad) & frame;
+            r.mask = comp(r.box) == c;
+            // Distance to the outside, the image border included: a 1 px zero frame.
+            cv::Mat framed;
+            cv::copyMakeBorder(r.mask, framed, 1, 1, 1, 1, cv::BORDER_CONSTANT, cv::Scalar(0));
+            cv::Mat d;
+            cv::distanceTransform(framed, d, cv::DIST_L2, 3);
+            r.dist = d(cv::Rect(1, 1, r.mask.cols, r.mask.rows)).clone();
+            out.push_back(std::move(r));
+        }
+    }
+    return out;
+}
+
+/// The core of a region: pixels at least `depth` from its outside, or, where none are,
+/// those at least half its largest depth.
+cv::Mat core_of(const Region& r, double depth) {
+    double max_d = 0;
+    cv::minMaxLoc(r.dist, nullptr, &max_d);
+    return r.dist >= float(std::min(depth, 0.5 * max_d));
+}
+
+struct Mark {
+    int id = 0;
+    /// Order within its region: every region's marks of rank 0 are drawn first (whatever
+    /// the budget), then those of rank 1, ...: a person marks every region before adding
+    /// more marks anywhere, not most of them in the (largest) background.
+    int rank = 0;
+    std::vector<cv::Point> own;        ///< pixels inside the region (full-image coordinates)
+    std::vector<cv::Point> stray;      ///< pixels past the region's border (sloppy only)
+};
+
+/// Horizontal dashes along the rows of `area` (crop of `r`): rows every `row_step` px from
+/// a random offset; on each run of the row, dashes of length `len` x U(0.7, 1.3) separated
+/// by gaps of `gap` x U(0.5, 1.5), starting at a random offset. The centre line only. When
+/// every row misses the area, one dash from the region's deepest pixel rightwards.
+std::vector<std::vector<cv::Point>> dash_lines(const Region& r, const cv::Mat& area, double len,
+                                               double row_step, double gap, Rng& rng) {
+    std::vector<std::vector<cv::Point>> lines;
+    for (double yf = rng.uniform(0, row_step); yf < area.rows; yf += row_step) {
+        const int y = int(yf);
+        const std::uint8_t* row = area.ptr<std::uint8_t>(y);
+        for (int x = 0; x < area.cols;) {
+            if (!row[x]) { ++x; continue; }
+            int b = x;
+            while (b + 1 < area.cols && row[b + 1]) ++b;
+            // Run [x, b]: dashes along it.
+            for (double xf = x + rng.uniform(0, std::min(gap, 0.5 * (b - x))); xf <= b;) {
+                const int x0 = int(xf);
+                const int x1 = std::min(b, x0 + std::max(1, int(std::lround(len * rng.uniform(0.7, 1.3)))) - 1);
+                std::vector<cv::Point> line;
+                for (int xx = x0; xx <= x1; ++xx) line.emplace_back(xx + r.box.x, y + r.box.y);
+                lines.push_back(std::move(line));
+                xf = x1 + 1 + gap * rng.uniform(0.5, 1.5);
+            }
+            x = b + 1;
+        }
+    }
+    if (lines.empty()) {  // every row missed the area: one dash from its deepest pixel
+        cv::Point at;
+        cv::minMaxLoc(r.dist, nullptr, nullptr, nullptr, &at);
+        std::vector<cv::Point> line;
+        for (int x = at.x; x < area.cols && area.at<std::uint8_t>(at.y, x) && x - at.x < len; ++x)
+            line.emplace_back(x + r.box.x, at.y + r.box.y);
+        if (!line.empty()) lines.push_back(std::move(line));
+    }
+    return lines;
+}
+
+/// The drawing order of a region's dashes: the longest first (rank 0, so that no region
+/// is marked by a sliver alone), the others in a seeded random order.
+std::vector<int> ranks(const std::vector<std::vector<cv::Point>>& lines, Rng& rng) {
+    size_t best = 0;
+    for (size_t k = 1; k < lines.size(); ++k)
+        if (lines[k].size() > lines[best].size()) best = k;
+    std::vector<int> order;
+    for (int k = 1; k < int(lines.size()); ++k) order.push_back(k);
+    rng.shuffle(order);
+    std::vector<int> rank(lines.size(), 0);
+    size_t next = 0;
+    for (size_t k = 0; k < lines.size(); ++k)
+        if (k != best) rank[k] = order[next++];
+    return rank;
+}
+
+/// Draws marks by rank (ties in a seeded random order) while the marked total stays
+/// within the budget; stray pixels are added by the caller.
+cv::Mat draw_marks(const cv::Mat& labels, std::vector<Mark>& marks, double budget, Rng& rng,
+                   std::vector<size_t>* kept = nullptr) {
+    rng.shuffle(marks);
+    std::stable_sort(marks.begin(), marks.end(), [](const Mark& a, const Mark& b) { return a.rank < b.rank; });
+    cv::Mat out(labels.size(), CV_8UC1, cv::Scalar(kUnmarked));
+    double marked = 0;
+    for (size_t k = 0; k < marks.size(); ++k) {
+        const Mark& m = marks[k];
+        int add = 0;
+        for (const auto& p : m.own) add += out.at<std::uint8_t>(p) == kUnmarked;
+        if (m.rank > 0 && marked + add > budget) continue;
+        for (const auto& p : m.own) out.at<std::uint8_t>(p) = std::uint8_t(m.id);
+        marked += add;
+        if (kept) kept->push_back(k);
+    }
+    return out;
+}
+
+/// Pen of width `w` along a centre line: the rows centre - (w-1)/2 .. centre + w/2.
+std::vector<cv::Point> widen(const std::vector<cv::Point>& line, int w, cv::Size size) {
+    std::vector<cv::Point> out;
+    for (const auto& p : line)
+        for (int k = -(w - 1) / 2; k <= w / 2; ++k) {
+            const cv::Point q(p.x, p.y + k);
+            if (q.y >= 0 && q.y < size.height && q.x >= 0 && q.x < size.width) out.push_back(q);
+        }
+    return out;
+}
+
+cv::Mat dash_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOptions& o) {
+    Rng rng(seed);
+    const double diag = std::hypot(labels.cols, labels.rows);
+    const double len = diag * rng.uniform(0.015, 0.03);
+    const double row_step = std::max(3.0, diag * rng.uniform(0.02, 0.04));
+    const double gap = len * rng.uniform(0.5, 1.5);
+    const int width = rng.integer(2, 3);
+    const double depth = std::max(1.0, o.erosion_fraction * diag);
+    std::vector<Mark> marks;
+    for (const Region& r : regions_of(labels, o.min_region_fraction * double(labels.total()), 0)) {
+        const cv::Mat core = core_of(r, depth);
+        const auto lines = dash_lines(r, core, len, row_step, gap, rng);
+        const std::vector<int> rank = ranks(lines, rng);
+        for (size_t k = 0; k < lines.size(); ++k) {
+            Mark m;
+            m.id = r.id;
+            m.rank = rank[k];
+            for (const auto& p : widen(lines[k], width, labels.size()))
+                if (labels.at<std::uint8_t>(p) == r.id) m.own.push_back(p);
+            if (!m.own.empty()) marks.push_back(std::move(m));
+        }
+    }
+    return draw_marks(labels, marks, o.max_marked_fraction * double(labels.total()), rng);
+}
+
+cv::Mat dot_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOptions& o) {
+    Rng rng(seed);
+    const double diag = std::hypot(labels.cols, labels.rows);
+    const int radius = std::max(2, int(std::lround(diag * rng.uniform(0.003, 0.006))));
+    std::vector<Mark> marks;
+    for (const Region& r : regions_of(labels, o.min_region_fraction * double(labels.total()), 0)) {
+        const int count = r.area >= 0.01 * double(labels.total()) ? rng.integer(2, 4) : rng.integer(1, 2);
+        const cv::Mat core = core_of(r, radius + 1.0);
+        std::vector<cv::Point> candidates;
+        for (int y = 0; y < core.rows; ++y)
+            for (int x = 0; x < core.cols; ++x)
+                if (core.at<std::uint8_t>(y, x)) candidates.emplace_back(x, y);
+        if (candidates.empty()) continue;
+        // Clicks spread over the region: each next one the farthest from the others of
+        // 30 random candidates.
+        std::vector<cv::Point> dots;
+        for (int d = 0; d < count; ++d) {
+            cv::Point best = candidates[size_t(rng.integer(0, int(candidates.size()) - 1))];
+            double best_d = -1;
+            for (int t = 0; t < (d == 0 ? 1 : 30); ++t) {
+                const cv::Point c = t == 0 && d == 0 ? best : candidates[size_t(rng.integer(0, int(candidates.size()) - 1))];
+                double nearest = 1e18;
+                for (const auto& q : dots) nearest = std::min(nearest, double((c - q).dot(c - q)));
+                if (nearest > best_d) { best_d = nearest; best = c; }
+            }
+            dots.push_back(best);
+        }
+        for (size_t d = 0; d < dots.size(); ++d) {
+            Mark m;
+            m.id = r.id;
+            m.rank = int(d);
+            for (int dy = -radius; dy <= radius; ++dy)
+                for (int dx = -radius; dx <= radius; ++dx) {
+                    if (dx * dx + dy * dy > radius * radius) continue;
+                    const cv::Point q(dots[d].x + r.box.x + dx, dots[d].y + r.box.y + dy);
+                    if (q.x < 0 || q.y < 0 || q.x >= labels.cols || q.y >= labels.rows) continue;
+                    if (labels.at<std::uint8_t>(q) == r.id) m.own.push_back(q);
+                }
+            if (!m.own.empty()) marks.push_back(std::move(m));
+        }
+    }
+    return draw_marks(labels, marks, o.max_marked_fraction * double(labels.total()), rng);
+}
+
+cv::Mat sloppy_strokes(const cv::Mat& labels, std::uint64_t seed, const StrokeOptions& o) {
+    Rng rng(seed);
+    const double diag = std::hypot(labels.cols, labels.rows);
+    const double len = diag * rng.uniform(0.03, 0.06);
+    const double row_step = std::max(3.0, diag * rng.uniform(0.025, 0.05));
+    const double gap = len * rng.uniform(0.5, 1.0);
+    const int width = rng.integer(3, 4);
+    const int stray = rng.integer(2, 5);  // px a stroke may run past its region's border
+    std::vector<Mark> marks;
+    for (const Region& r : regions_of(labels, o.min_region_fraction * double(labels.total()), stray + width)) {
+        // The whole region, borders included: a hasty hand does not keep clear of them.
+        auto lines = dash_lines(r, r.mask, len, row_step, gap, rng);
+        if (lines.empty()) continue;
+        cv::Mat outside_dist;  // distance of crop pixels to the region
+        cv::distanceTransform(~r.mask, outside_dist, cv::DIST_L2, 3);
+        const std::vector<int> rank = ranks(lines, rng);
+        for (size_t k = 0; k < lines.size(); ++k) {
+            auto& line = lines[k];
+            // A drifting hand: a slope of up to +-0.1, and overshoot past the run's ends.
+            const double slope = rng.uniform(-0.1, 0.1);
+            const int over_l = rng.integer(0, stray), over_r = rng.integer(0, stray);
+            const cv::Point a = line.front(), b = line.back();
+            std::vector<cv::Point> drawn;
+            for (int x = a.x - over_l; x <= b.x + over_r; ++x)
+                drawn.emplace_back(x, a.y + int(std::lround(slope * (x - a.x))));
+            Mark m;
+            m.id = r.id;
+            m.rank = rank[k];
+            for (const auto& p : widen(drawn, width, labels.size())) {
+                if (p.x < 0 || p.x >= labels.cols) continue;
+                if (labels.at<std::uint8_t>(p) == r.id) {
+                    m.own.push_back(p);
+                    continue;
+                }
+                const cv::Point c = p - r.box.tl();
+                if (c.x >= 0 && c.y >= 0 && c.x < r.box.width && c.y < r.box.height &&
+                    outside_dist.at<float>(c) <= float(stray))
+                    m.stray.push_back(p);
+            }
+            if (!m.own.empty()) marks.push_back(std::move(m));
+        }
+    }
+    std::vector<size_t> kept;
+    // The budget holds the strays too (at most 0.6 % of the marks, below).
+    cv::Mat out = draw_marks(labels, marks, 0.994 * o.max_marked_fraction * double(labels.total()), rng, &kept);
+    // About 1 % of the marks in a wrong class: stray pixels past the borders up to 0.6 % of
+    // the marks, then one slip of the pen's colour (a piece of a stroke drawn in another
+    // class present in the image) up to 1 %.
+    const double marked = double(cv::countNonZero(out != kUnmarked));
+    const double stray_budget = 0.006 * marked, wrong_budget = 0.01 * marked;
+    double wrong = 0;
+    for (size_t k : kept) {
+        const Mark& m = marks[k];
+        int add = 0;
+        for (const auto& p : m.stray) add += out.at<std::uint8_t>(p) == kUnmarked;
+        if (add == 0 || wrong + add > stray_budget) continue;
+        for (const auto& p : m.stray)
+            if (out.at<std::uint8_t>(p) == kUnmarked) out.at<std::uint8_t>(p) = std::uint8_t(m.id);
+        wrong += add;
+    }
+    std::vector<int> ids;
+    for (const Mark& m : marks)
+        if (std::find(ids.begin(), ids.end(), m.id) == ids.end()) ids.push_back(m.id);
+    std::sort(ids.begin(), ids.end());
+    if (ids.size() >= 2 && !kept.empty()) {
+        for (int attempt = 0; attempt < 20 && wrong < wrong_budget; ++attempt) {
+            const Mark& m = marks[kept[size_t(rng.integer(0, int(kept.size()) - 1))]];
+            if (m.rank == 0) continue;  // keep every region's first stroke right
+            int other = ids[size_t(rng.integer(0, int(ids.size()) - 2))];
+            if (other >= m.id) other = ids[size_t(std::find(ids.begin(), ids.end(), other) - ids.begin()) + 1];
+            for (const auto& p : m.own) {
+                if (wrong >= wrong_budget) break;
+                std::uint8_t& v = out.at<std::uint8_t>(p);
+                if (v != m.id) continue;
+                v = std::uint8_t(other);
+                ++wrong;
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+cv::Mat simulate_strokes(const cv::Mat& labels, StrokeStyle style, std::uint64_t seed,
+                         const StrokeOptions& options) {
+    std::string why;
+    require(options.is_valid(&why), "StrokeOptions: ", why);
+    require(!labels.empty() && labels.type() == CV_8UC1,
+            "simulate_strokes: labels must be a non-empty 8-bit single-channel class map");
+    switch (style) {
+        case StrokeStyle::dashes: return dash_strokes(labels, seed, options);
+        case StrokeStyle::dots: return dot_strokes(labels, seed, options);
+        case StrokeStyle::sloppy: return sloppy_strokes(labels, seed, options);
+        case StrokeStyle::medial: break;
+    }
+    return simulate_strokes(labels, options);
 }
 
 // ---- Colour-coded strokes -----------------------------------------------------------------

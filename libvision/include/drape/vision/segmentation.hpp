@@ -43,6 +43,29 @@ struct SegmentationOptions {
     /// strokes (drawn along its medial axis) however surely they are background; a
     /// compact garment region has no such far pixels.
     double background_distance_factor = 0.625;  ///< >= 0
+    /// Strokes mode, marks as evidence rather than law (docs/vision.md, "Segmentation"):
+    /// a mark whose colour costs more than this (nats, -log p) under its class's colour
+    /// model (from the marks) than under another marked class's is dropped as a slip or a
+    /// stroke past a border. 0 keeps every mark.
+    double mark_outlier_margin = 0.0;       ///< >= 0
+    /// Strokes mode: marks within this distance (working px) of a strong colour edge (an
+    /// RGB step to a 4-neighbour above `mark_edge_factor` x the photo's mean step) are soft
+    /// evidence (`soft_mark_weight` per other label) instead of hard. 0 = all hard.
+    double mark_edge_px = 0.0;              ///< >= 0
+    double mark_edge_factor = 3.0;          ///< > 0
+    double soft_mark_weight = 4.0;          ///< >= 0
+    /// Strokes mode: the first colour model of a class takes the pixels within this
+    /// geodesic distance (fraction of the body height) of its marks, not the marks alone,
+    /// so that a few clicks sample their region. 0 = the marks.
+    double seed_growth_fraction = 0.0;      ///< >= 0
+    /// Strokes mode with joints: every class but the background costs up to this much more
+    /// beyond `body_reach_fraction` x body height from the skeleton (ramping up over one
+    /// more such distance). 0 = off.
+    double body_prior_weight = 10.0;        ///< >= 0
+    /// Strokes mode: when fewer than this fraction of the pixels are marked, the stroke
+    /// distance weight is scaled by (marked fraction / this), down to a quarter. 0 = off.
+    double sparse_marks_fraction = 0.01;    ///< in [0, 1]
+    double body_reach_fraction = 0.12;      ///< > 0
     /// Automatic mode: weight of the learned spatial prior, layout_weight x -ln p(label |
     /// body-frame cell) added to each label's colour cost (docs/vision.md, "Segmentation").
     double layout_weight = 0.5;             ///< >= 0

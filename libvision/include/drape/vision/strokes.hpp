@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -35,6 +36,33 @@ struct StrokeOptions {
 /// covered. Marked pixels hold the class id, others kUnmarked (255).
 /// \throw drape::InvalidInput for a non-CV_8UC1 or empty map, or invalid options.
 cv::Mat simulate_strokes(const cv::Mat& labels, const StrokeOptions& options = {});
+
+/// How a simulated user draws (docs/vision.md, "Simulated strokes").
+enum class StrokeStyle {
+    medial,  ///< the longest paths through each region's eroded medial axis (above)
+    dashes,  ///< short horizontal dashes through the region cores, <= 3 % of the pixels
+    dots,    ///< a few click-like small disks per region
+    sloppy,  ///< dashes over whole regions that stray a few px over borders; ~1 % wrong class
+};
+
+/// "medial", "dashes", "dots", "sloppy".
+const char* to_string(StrokeStyle style);
+/// Parses a style name. \throw drape::InvalidInput naming the text.
+StrokeStyle parse_stroke_style(const std::string& text);
+
+/// Strokes of the given style for every class of `labels` (as above). The dashes, dots and
+/// sloppy styles draw their parameters (dash length, spacing, pen width, dot count and
+/// radius, stray distance) and positions from `seed`: the same labels and seed give the
+/// same strokes, another seed another pattern. `medial` ignores the seed. `options`
+/// supplies min_region_fraction, erosion_fraction (the core of a region) and
+/// max_marked_fraction (the budget) to every style.
+/// \throw drape::InvalidInput as simulate_strokes.
+cv::Mat simulate_strokes(const cv::Mat& labels, StrokeStyle style, std::uint64_t seed,
+                         const StrokeOptions& options = {});
+
+/// Fraction of the marked pixels of `strokes` whose class differs from `labels`' (0 when
+/// nothing is marked). \pre equal sizes, both CV_8UC1.
+double wrong_mark_fraction(const cv::Mat& strokes, const cv::Mat& labels);
 
 /// Fraction of pixels of a stroke map that are marked (not 255).
 double marked_fraction(const cv::Mat& strokes);
