@@ -1,6 +1,7 @@
 // drape synth --seed N [--garment G|random] [--pose a|b|c|random] [--material NAME|random]
-//             [--bending-scale S] [--edge CM] [--max-steps N] [--samples N] --out DIR
-// drape synth --suite SUITE.json [--only NAME,...] [--skip-existing] --out DIR
+//             [--bending-scale S] [--print none|stripes|checks|dots] [--edge CM] [--max-steps N]
+//             [--samples N] [--print-check] --out DIR
+// drape synth --suite SUITE.json [--only NAME,...] [--skip-existing] [--print-check] --out DIR
 #include "commands.hpp"
 #include "image_io.hpp"
 #include "json_io.hpp"
@@ -15,6 +16,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
+#include <iomanip>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -36,6 +38,7 @@ struct SynthArgs {
     std::string suite;
     std::string only;
     bool skip_existing = false;
+    bool print_check = false;
     std::string out;
 };
 
@@ -121,10 +124,33 @@ cv::Mat contact_sheet(const std::vector<std::pair<std::string, fs::path>>& scene
     return sheet;
 }
 
+// One line per garment of a print check: P plain, P per print and the ratios to plain.
+void print_check_lines(const std::string& name, const nlohmann::json& check) {
+    for (const auto& g : check["garments"]) {
+        std::cout << "print check: " << name << " " << g["type"].get<std::string>() << " (sampled "
+                  << g["sampled_print"].get<std::string>() << ", bending x" << std::setprecision(3)
+                  << g["bending_scale"].get<double>() << "): P";
+        for (const char* k : {"none", "stripes", "checks", "dots"})
+            std::cout << " " << k << " " << std::fixed << std::setprecision(2) << g["prints"][k]["P_per_m2"].get<double>()
+                      << std::defaultfloat;
+        std::cout << "; ratio";
+        for (const char* k : {"stripes", "checks", "dots"})
+            std::cout << " " << std::fixed << std::setprecision(3) << g["ratio_to_plain"][k].get<double>()
+                      << std::defaultfloat;
+        std::cout << "\n";
+    }
+}
+
 void run_single(const SynthArgs& args) {
     if (args.seed < 0) throw InvalidInput("drape synth: give --seed N (N >= 0) or --suite FILE");
     SynthOptions options = with_choices(args.options, args.choices);
     options.seed = std::uint64_t(args.seed);
+    if (args.print_check) {
+        SynthSummary s;
+        const nlohmann::json check = make_and_write_print_check(options, args.out, args.skip_existing, &s);
+        print_check_lines("seed " + std::to_string(options.seed), check);
+        return;
+    }
     const SynthSummary s = make_and_write_synth_scene(options, args.out);
     std::cout << "drape synth: seed " << options.seed << ", " << s.brief_report() << "\n";
     if (!s.usable())
@@ -147,6 +173,25 @@ void run_suite(const SynthArgs& args) {
     nlohmann::json report = nlohmann::json::array();
     std::vector<std::pair<std::string, fs::path>> done;
     int failed = 0;
+    if (args.print_check) {
+        // The plain / printed comparison of every scene: a drape each (unless --skip-existing
+        // finds its renders), four mid-day renders, P on each.
+        nlohmann::json checks = nlohmann::json::object();
+        for (const SuiteScene& s : scenes) {
+            try {
+                checks[s.name] = make_and_write_print_check(with_choices(s.options, s.choices), out / s.name,
+                                                            args.skip_existing, nullptr);
+                print_check_lines(s.name, checks[s.name]);
+            } catch (const std::exception& e) {
+                ++failed;
+                checks[s.name] = {{"failed", e.what()}};
+                std::cout << "print check: " << s.name << ": failed, " << e.what() << std::endl;
+            }
+        }
+        write_json_file(out / "print_check.json", checks);
+        if (failed > 0) throw std::runtime_error("drape synth: " + std::to_string(failed) + " scene(s) failed");
+        return;
+    }
     for (const SuiteScene& s : scenes) {
         const fs::path dir = out / s.name;
         nlohmann::json r = {{"name", s.name}, {"seed", s.options.seed}, {"garment", s.choices.garment},
@@ -199,6 +244,12 @@ void add_synth_command(CLI::App& app) {
                     "a built-in measured fabric (e.g. gray-interlock) or random (default: a measured fabric "
                     "with bending scale log-uniform in [1, 100])");
     cmd->add_option("--bending-scale", args->options.bending_scale, "fix the bending scale s_b (> 0)");
+    cmd->add_option("--print", args->choices.print,
+                    "none (plain), stripes, checks, dots, or sampled (default: drawn with the look); the same seed "
+                    "gives the same drape and labels whatever the print");
+    cmd->add_flag("--print-check", args->print_check,
+                  "render each drape plain and with each print (mid-day) and compare P: print_*.png, "
+                  "print_check.json (an evaluation; with --skip-existing re-measures existing renders)");
     cmd->add_option("--edge", args->options.edge_cm, "mesh target edge length, cm (default 4)");
     cmd->add_option("--max-steps", args->options.max_steps, "dynamic steps per drape at most (default 600)");
     cmd->add_option("--width", args->options.width_px, "image width, px (default 600)");

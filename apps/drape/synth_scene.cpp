@@ -8,8 +8,12 @@
 #include <drape/body/camera.hpp>
 #include <drape/core/errors.hpp>
 #include <drape/garment/garment_type.hpp>
+#include <drape/synth/print_check.hpp>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <regex>
 #include <system_error>
 #include <vector>
@@ -26,6 +30,13 @@ body::NamedPose pose_of(const std::string& letter) {
     if (letter == "b") return body::NamedPose::arms_down;
     if (letter == "c") return body::NamedPose::walking;
     throw InvalidInput("--pose '" + letter + "' is not a (A-pose), b (arms down), c (walking) or random");
+}
+
+std::optional<render::PrintKind> print_of(const std::string& name) {
+    if (name == "sampled") return std::nullopt;
+    for (render::PrintKind k : synth::kPrintKinds)
+        if (name == synth::print_name(k)) return k;
+    throw InvalidInput("--print '" + name + "' is not none, stripes, checks, dots or sampled");
 }
 
 nlohmann::json camera_to_json(const body::Camera& c) {  // the `drape fit-body` camera object
@@ -156,6 +167,7 @@ synth::SynthOptions with_choices(synth::SynthOptions base, const SynthChoices& c
     base.garments = choices.garment == "random" ? std::vector<GarmentType>{} : outfit_from_spec(choices.garment);
     base.pose = choices.pose == "random" ? std::nullopt : std::optional<body::NamedPose>(pose_of(choices.pose));
     base.fabric = choices.material == "random" ? std::string() : choices.material;
+    base.print = print_of(choices.print);
     return base;
 }
 
@@ -167,6 +179,66 @@ synth::SynthSummary make_and_write_synth_scene(const synth::SynthOptions& option
     const synth::SynthResult r = synth::make_synth_scene(scene, options);
     write_scene_files(dir, scene, options, r);
     return r.summary;
+}
+
+namespace {
+
+nlohmann::json wrinkles_json(const synth::GarmentWrinkles& w) {
+    return {{"P_per_m2", w.summary.density_per_m2},
+            {"fold_count", w.summary.fold_count},
+            {"usable", w.summary.usable()},
+            {"message", w.summary.message}};
+}
+
+nlohmann::json print_check_json(const synth::SynthScene& scene, const std::vector<synth::PrintComparison>& garments) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const synth::PrintComparison& g : garments) {
+        nlohmann::json per = nlohmann::json::object(), ratios = nlohmann::json::object();
+        for (std::size_t k = 0; k < synth::kPrintKinds.size(); ++k) {
+            per[synth::print_name(synth::kPrintKinds[k])] = wrinkles_json(g.wrinkles[k]);
+            if (k > 0) ratios[synth::print_name(synth::kPrintKinds[k])] = g.ratio(k);
+        }
+        out.push_back({{"type", g.type}, {"label", g.label}, {"sampled_print", synth::print_name(g.sampled_print)},
+                       {"bending_scale", scene.garments[&g - garments.data()].material.bending_scale},
+                       {"prints", per}, {"ratio_to_plain", ratios}});
+    }
+    return {{"seed", scene.seed}, {"garments", out}};
+}
+
+fs::path print_image_path(const fs::path& dir, render::PrintKind k) {
+    return dir / (std::string("print_") + synth::print_name(k) + ".png");
+}
+
+}  // namespace
+
+nlohmann::json make_and_write_print_check(const synth::SynthOptions& options, const fs::path& dir, bool reuse,
+                                          synth::SynthSummary* summary) {
+    if (options.print)
+        throw InvalidInput("drape synth --print-check renders every print itself: leave --print out");
+    const synth::SynthScene scene = synth::sample_synth_scene(options);
+    bool have = reuse && fs::exists(dir / "labels.png");
+    for (render::PrintKind k : synth::kPrintKinds) have = have && fs::exists(print_image_path(dir, k));
+    std::vector<synth::PrintComparison> garments;
+    if (have) {
+        std::array<cv::Mat, 4> midday;
+        for (std::size_t k = 0; k < midday.size(); ++k) midday[k] = read_photo(print_image_path(dir, synth::kPrintKinds[k]));
+        const cv::Mat labels = cv::imread((dir / "labels.png").string(), cv::IMREAD_UNCHANGED);
+        if (labels.empty()) throw IoError("cannot read '" + (dir / "labels.png").string() + "'");
+        garments = synth::compare_prints(scene, midday, labels);
+    } else {
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec) throw IoError("cannot create output folder '" + dir.string() + "': " + ec.message());
+        const synth::SynthResult r = synth::make_synth_scene(scene, options);
+        write_scene_files(dir, scene, options, r);
+        const synth::PrintCheck c = synth::check_prints(scene, r, options);
+        for (std::size_t k = 0; k < c.midday.size(); ++k) write_png(print_image_path(dir, synth::kPrintKinds[k]), c.midday[k]);
+        garments = c.garments;
+        if (summary) *summary = r.summary;
+    }
+    const nlohmann::json j = print_check_json(scene, garments);
+    write_json_file(dir / "print_check.json", j);
+    return j;
 }
 
 }  // namespace drape::app

@@ -48,13 +48,33 @@ render::Scene synth_render_scene(const SynthScene& scene, const Eigen::MatrixXd&
     return rs;
 }
 
-SynthImages render_synth_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
-                               const garment::DressedOutfit& outfit, const SynthOptions& options) {
-    const render::Renderer renderer(synth_render_scene(scene, body_vertices, outfit));
-    const render::Camera camera = render::Camera::from_body(scene.camera, scene.width_px, scene.height_px);
+namespace {
+
+render::RenderOptions render_options(const SynthOptions& options) {
     render::RenderOptions ro;
     ro.samples_per_pixel = options.samples_per_pixel;
     ro.threads = options.threads;
+    return ro;
+}
+
+}  // namespace
+
+render::RenderImages render_synth_lighting(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
+                                           const garment::DressedOutfit& outfit, const SynthOptions& options,
+                                           render::LightingPreset preset) {
+    const render::Renderer renderer(synth_render_scene(scene, body_vertices, outfit));
+    render::RenderImages images;
+    renderer.render(render::Camera::from_body(scene.camera, scene.width_px, scene.height_px),
+                    render::lighting_preset(preset), render_options(options), images);
+    return images;
+}
+
+SynthImages render_synth_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
+                               const garment::DressedOutfit& outfit, const SynthOptions& options) {
+    // One renderer (one BVH) for both lightings.
+    const render::Renderer renderer(synth_render_scene(scene, body_vertices, outfit));
+    const render::Camera camera = render::Camera::from_body(scene.camera, scene.width_px, scene.height_px);
+    const render::RenderOptions ro = render_options(options);
     SynthImages images;
     renderer.render(camera, render::lighting_preset(render::LightingPreset::midday), ro, images.midday);
     renderer.render(camera, render::lighting_preset(render::LightingPreset::sunset), ro, images.sunset);

@@ -242,7 +242,8 @@ SynthScene sample_synth_scene(const SynthOptions& options) {
         g.material.bending_scale = options.bending_scale > 0 ? options.bending_scale
                                    : random_fabric           ? std::pow(10.0, log_scale)
                                                              : 1.0;
-        g.look = sample_look(look_rng);
+        g.look = sample_look(look_rng);  // drawn always: the streams stay aligned
+        if (options.print) g.look.print.kind = *options.print;
         g.label = garment_label(t);
         s.garments.push_back(g);
     }

@@ -3,6 +3,7 @@
 
 #include <drape/vision/image_io.hpp>
 
+#include "print_suppression.hpp"
 #include "thinning.hpp"
 
 #include <drape/core/errors.hpp>
@@ -45,6 +46,9 @@ bool WrinkleOptions::is_valid(std::string* why) const {
     if (threads < 0) return fail("threads must be >= 0");
     if (!(min_garment_area_fraction >= 0)) return fail("min_garment_area_fraction must be >= 0");
     if (!(min_fold_count >= 0)) return fail("min_fold_count must be >= 0");
+    if (!(print_step_threshold > 0)) return fail("print_step_threshold must be > 0");
+    if (!(print_chroma_threshold > 0)) return fail("print_chroma_threshold must be > 0");
+    if (!(print_edge_sigma_px >= 0.7 && print_edge_sigma_px < 100)) return fail("print_edge_sigma_px must lie in [0.7, 100)");
     return true;
 }
 
@@ -218,9 +222,32 @@ GarmentCrop crop_garment(const cv::Mat& image, const cv::Mat& mask, const cv::Ma
     GarmentCrop c;
     c.roi = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin) &
             cv::Rect(0, 0, image.cols, image.rows);
-    cv::cvtColor(image(c.roi), c.gray, cv::COLOR_BGR2GRAY);
-    c.gray.convertTo(c.gray, CV_32F, 1.0 / 255.0);
     c.mask = mask(c.roi);
+    if (o.suppress_prints) {
+        detail::ShadingOptions so;
+        so.edge_sigma_px = o.print_edge_sigma_px;
+        so.step_threshold = o.print_step_threshold;
+        so.chroma_threshold = o.print_chroma_threshold;
+        // On the working grid (the body working_body_height_px tall), so that the print's
+        // edges and the folds are told apart at the same body-relative scale whatever the
+        // photo's resolution; then back to the photo's grid for the ensemble.
+        const double f = o.working_body_height_px / H;
+        const cv::Size ws(std::max(3, int(std::lround(c.roi.width * f))), std::max(3, int(std::lround(c.roi.height * f))));
+        cv::Mat bgr_w, mask_w;
+        cv::resize(image(c.roi), bgr_w, ws, 0, 0, f < 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+        cv::resize(c.mask, mask_w, ws, 0, 0, cv::INTER_NEAREST);
+        cv::Mat edges;
+        const cv::Mat shading = detail::shading_luminance(bgr_w, mask_w, so, &edges);
+        if (cv::countNonZero(edges & mask_w) == 0) {
+            cv::cvtColor(image(c.roi), c.gray, cv::COLOR_BGR2GRAY);
+            c.gray.convertTo(c.gray, CV_32F, 1.0 / 255.0);
+        } else {
+            cv::resize(shading, c.gray, c.roi.size(), 0, 0, f > 1 ? cv::INTER_AREA : cv::INTER_CUBIC);
+        }
+    } else {
+        cv::cvtColor(image(c.roi), c.gray, cv::COLOR_BGR2GRAY);
+        c.gray.convertTo(c.gray, CV_32F, 1.0 / 255.0);
+    }
     if (!occlusion.empty()) c.occlusion = occlusion(c.roi);
     return c;
 }
@@ -418,6 +445,7 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, c
 WrinkleSummary detect_wrinkles(const cv::Mat& image, const cv::Mat& mask, const cv::Mat& occlusion,
                                const Joints& joints, const WrinkleOptions& o,
                                std::vector<Fold>* folds) {
+
     const auto t0 = std::chrono::steady_clock::now();
     std::string why;
     require(o.is_valid(&why), "WrinkleOptions: ", why);

@@ -71,6 +71,46 @@ TEST_CASE("drape synth writes the same bytes twice for a seed", "[apps][synth]")
     }
 }
 
+TEST_CASE("drape synth --print renders the same drape plain and printed", "[apps][synth][prints]") {
+    const auto a = drape::test::scratch_dir("cli_synth_plain"), b = drape::test::scratch_dir("cli_synth_checks");
+    const auto ra = run_drape("synth --seed 11" + kQuick + " --print none --out " + quoted(a));
+    INFO(ra.out);
+    REQUIRE(ra.exit_code == 0);
+    const auto rb = run_drape("synth --seed 11" + kQuick + " --print checks --out " + quoted(b));
+    INFO(rb.out);
+    REQUIRE(rb.exit_code == 0);
+    // The same geometry: labels, joints and strokes are the same bytes ...
+    for (const char* f : {"labels.png", "joints.json", "strokes.png"}) {
+        INFO(f);
+        CHECK(read_bytes(a / f) == read_bytes(b / f));
+    }
+    // ... the colours are not: the skirt's pixels differ, the rest of the image does not.
+    const cv::Mat labels = cv::imread((a / "labels.png").string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat pa = cv::imread((a / "image_midday.png").string()), pb = cv::imread((b / "image_midday.png").string());
+    REQUIRE(pa.size() == pb.size());
+    int skirt = 0, skirt_changed = 0, other_changed = 0;
+    for (int y = 0; y < pa.rows; ++y)
+        for (int x = 0; x < pa.cols; ++x) {
+            const bool changed = pa.at<cv::Vec3b>(y, x) != pb.at<cv::Vec3b>(y, x);
+            if (labels.at<unsigned char>(y, x) == 42) {
+                ++skirt;
+                skirt_changed += changed;
+            } else {
+                other_changed += changed;
+            }
+        }
+    CHECK(skirt_changed > skirt / 4);  // a checkerboard: about half of the skirt shows the second colour
+    CHECK(other_changed < skirt / 20);  // shadows and reflections of the skirt only
+    // The truth is the same but for P, measured on the render.
+    nlohmann::json ta = read_json(a / "truth.json"), tb = read_json(b / "truth.json");
+    ta["garments"][0].erase("wrinkle_density_per_m2");
+    tb["garments"][0].erase("wrinkle_density_per_m2");
+    CHECK(ta == tb);
+    const auto bad = run_drape("synth --seed 11 --print plaid --out " + quoted(a));
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.out.find("plaid") != std::string::npos);
+}
+
 TEST_CASE("drape synth: joints on the body, skirt labels, truth as simulated", "[apps][synth]") {
     const auto dir = drape::test::scratch_dir("cli_synth");
     const auto r = run_drape("synth --seed 5" + kQuick + " --bending-scale 30 --out " + quoted(dir));

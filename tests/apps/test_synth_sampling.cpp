@@ -36,6 +36,29 @@ TEST_CASE("a scene's sampling is deterministic and its streams independent", "[a
     CHECK(c.pose.rotations != a.pose.rotations);
 }
 
+TEST_CASE("a forced print changes the print kind and nothing else", "[apps][synth][sampling][prints]") {
+    synth::SynthOptions o;
+    o.seed = 913577;
+    const synth::SynthScene drawn = synth::sample_synth_scene(o);
+    for (render::PrintKind kind : {render::PrintKind::solid, render::PrintKind::checks}) {
+        o.print = kind;
+        const synth::SynthScene s = synth::sample_synth_scene(o);
+        CHECK(s.shape.values == drawn.shape.values);
+        CHECK(s.pose.rotations == drawn.pose.rotations);
+        CHECK(s.camera.offset_px == drawn.camera.offset_px);
+        CHECK(s.skin_srgb == drawn.skin_srgb);
+        REQUIRE(s.garments.size() == drawn.garments.size());
+        for (std::size_t i = 0; i < s.garments.size(); ++i) {
+            CHECK(s.garments[i].base_fabric == drawn.garments[i].base_fabric);
+            CHECK(s.garments[i].material.bending_scale == drawn.garments[i].material.bending_scale);
+            CHECK(s.garments[i].look.colour_srgb == drawn.garments[i].look.colour_srgb);
+            CHECK(s.garments[i].look.print.second_colour_srgb == drawn.garments[i].look.print.second_colour_srgb);
+            CHECK(s.garments[i].look.print.period == drawn.garments[i].look.print.period);
+            CHECK(s.garments[i].look.print.kind == kind);
+        }
+    }
+}
+
 TEST_CASE("synth options reject what cannot be made", "[apps][synth][sampling]") {
     using garment::GarmentType;
     synth::SynthOptions o;

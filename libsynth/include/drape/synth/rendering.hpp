@@ -5,6 +5,7 @@
 
 #include <drape/synth/draping.hpp>
 #include <drape/render/renderer.hpp>
+#include <drape/render/lighting.hpp>
 #include <drape/render/scene.hpp>
 #include <drape/synth/sampling.hpp>
 #include <drape/synth/synth_options.hpp>
@@ -21,6 +22,13 @@ namespace drape::synth {
 /// \param body_vertices the posed body, #B x 3 world metres (before placement).
 render::Scene synth_render_scene(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
                                  const garment::DressedOutfit& outfit);
+
+/// Renders synth_render_scene with the scene's camera under one lighting preset at
+/// options.samples_per_pixel on options.threads.
+/// \throw drape::InvalidInput as render::Renderer.
+render::RenderImages render_synth_lighting(const SynthScene& scene, const Eigen::MatrixXd& body_vertices,
+                                           const garment::DressedOutfit& outfit, const SynthOptions& options,
+                                           render::LightingPreset preset);
 
 struct SynthImages {
     render::RenderImages midday;  ///< colour, labels, depth, ... under LightingPreset::midday

@@ -4,6 +4,7 @@
 
 #include <drape/body/pose.hpp>
 #include <drape/garment/garment_type.hpp>
+#include <drape/render/material.hpp>
 
 #include <cstdint>
 #include <optional>
@@ -26,6 +27,11 @@ struct SynthOptions {
     /// Bending scale s_b; <= 0 = the default (drawn fabric: log-uniform in [1, 100]; named
     /// fabric: 1).
     double bending_scale = 0;
+    /// The print of every garment (render::PrintKind::solid = plain); empty: drawn with the
+    /// look (docs/synthetic.md, "Look"). Only the kind is forced: colours, period and angle
+    /// are the drawn ones, and nothing else of the scene changes (same body, sizing,
+    /// fabric, drape, labels), so one seed renders plain and printed.
+    std::optional<render::PrintKind> print;
     double edge_cm = 4.0;      ///< mesh target edge length, (0, 20] cm
     /// Dynamic steps of each drape at most (>= 20); untangling and the fallback after a
     /// failed static solve are capped at a third of it each.

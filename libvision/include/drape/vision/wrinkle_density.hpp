@@ -65,6 +65,21 @@ struct WrinkleOptions {
     /// squared: the default, 0.01 = full_fold_fraction^2, is the square of one full-length
     /// fold; a smaller patch cannot hold one.
     double min_garment_area_fraction = 0.01;  ///< >= 0
+    /// Folds, not prints (issue 20; docs/vision.md, "Wrinkle density", "Prints"): when true
+    /// the detector runs on the garment's shading, its luminance with the steps of its
+    /// print removed on the working grid (a Retinex-style intrinsic decomposition: the
+    /// log-luminance gradients on the print's edges replaced by those of the smoothed shading
+    /// around them and integrated back by a Poisson solve). Off by default: measured, it
+    /// keeps P of a printed garment nearer P of the plain one on coarse prints but removes
+    /// folds with fine high-contrast prints and breaks the scale stability of P on the photos
+    /// (the notes).
+    bool suppress_prints = false;
+    /// With suppress_prints, a print edge: a step of log luminance of at least this ...
+    double print_step_threshold = 0.3;  ///< > 0
+    /// ... or of log chromaticity (log R/G, log B/G) of at least this, measured by the
+    /// gradients at print_edge_sigma_px (working-grid pixels).
+    double print_chroma_threshold = 0.15;  ///< > 0
+    double print_edge_sigma_px = 0.7;      ///< [0.7, 100)
 
     bool is_valid(std::string* why = nullptr) const;
 };
