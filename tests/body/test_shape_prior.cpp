@@ -3,7 +3,7 @@
 #include <drape/body/shape_prior.hpp>
 #include <drape/core/errors.hpp>
 
-#include "ansur_records.hpp"
+#include <drape/fixtures/ansur_records.hpp>
 #include "test_paths.hpp"
 
 #include <catch2/catch.hpp>
