@@ -7,9 +7,9 @@
 //   build-tools/tools/drape_derive_ansur_prior ../shared/data/anthropometry > libbody/src/ansur_prior_data.cpp
 //
 // With --table it prints instead the Markdown summary used in docs/shape-prior.md.
-// See docs/shape-prior.md for the method; the survey is read by tests/body/ansur_records.cpp
+// See docs/shape-prior.md for the method; the survey is read by fixtures/src/ansur_records.cpp
 // (shared with the tests, so both read the files the same way).
-#include "ansur_records.hpp"
+#include <drape/fixtures/ansur_records.hpp>
 
 #include <drape/body/semantic_shape.hpp>
 #include <drape/core/errors.hpp>

@@ -2,7 +2,8 @@
 //             [--materials DIR] [--body P.json] [--pose NAME|POSE.json] [--edge CM]
 //             [--no-render] [--save-dressed] [--keep-arms] --out DIR
 // drape eval-dress [--garments LIST] [--poses LIST] [--bodies LIST] [--edge CM] [--material NAME|PATH]
-//             [--materials DIR] --out DIR   (the templates x bodies x poses table)
+//             [--materials DIR] [--ansur N [--seed S] [--ansur-dir DIR]] [--docs FILE] --out DIR
+//             (the templates x bodies x poses table; --ansur: bodies sampled from the ANSUR II records)
 #include "body_json.hpp"
 #include "commands.hpp"
 #include "garment_json.hpp"
@@ -18,6 +19,7 @@
 #include <drape/core/errors.hpp>
 #include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/drape_garment.hpp>
+#include <drape/fixtures/ansur_records.hpp>
 #include <drape/fixtures/eval_bodies.hpp>
 #include <drape/garment/dress_outfit.hpp>
 #include <drape/garment/garment_export.hpp>
@@ -36,6 +38,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <mutex>
+#include <thread>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -214,10 +219,11 @@ void run_dress(const DressArgs& requested) {
     std::cerr << "drape dress: " << out.meshing[0].brief_report() << "\n";
     if (args.save_dressed) {  // the initial state the simulation starts from
         Eigen::MatrixX3d D;
-        garment::dress_garment(pattern, mesh, model, shaped, body::Pose::rest(), options.dressing, D);
+        body::Pose dressing_pose;
+        garment::dress_for_drape(pattern, mesh, model, shaped, options.dressing, D, dressing_pose);
         garment::write_garment_obj(dir / "dressed.obj", pattern, mesh, D, "dressed garment (rest A-pose), world");
         if (!args.no_render)
-            write_render(dir / "dressed.png", body::pose_body(model, shaped, body::Pose::rest()).vertices, model.faces,
+            write_render(dir / "dressed.png", body::pose_body(model, shaped, dressing_pose).vertices, model.faces,
                          {&mesh}, {D});
     }
     const garment::DrapeSummary& draped = s.drape;
@@ -322,11 +328,15 @@ void run_dress_outfit(const DressArgs& args) {
 struct EvalDressArgs {
     std::vector<std::string> garments = {"skirt", "pants", "tshirt", "dress"};
     std::vector<std::string> poses = {"a_pose", "arms_down", "walking"};
-    std::vector<std::string> bodies;  // empty: all of kEvalBodies
+    std::vector<std::string> bodies;  // empty: all of kEvalBodies (or of the ANSUR sample)
     std::string material = "gray-interlock";
     std::string materials_dir;
     double edge_cm = 4.0;
     bool outfit = true;
+    int ansur = 0;             // > 0: this many bodies sampled from the ANSUR II records
+    std::uint64_t seed = 1;    // of the ANSUR sampling
+    std::string ansur_dir = "../shared/data/anthropometry";
+    int jobs = 1;              // cases run at once (threads)
     std::string docs;  // a Markdown file whose eval-dress block is replaced (see kDocsBegin)
     std::string out;
 };
@@ -335,34 +345,161 @@ using garment::EvalBody;
 using garment::kEvalBodies;
 
 // `--docs FILE`: the lines between these markers are replaced by the run's table and its
-// summary line, and the contact sheet goes to images/dress_eval.jpg beside FILE.
+// summary line, and the contact sheet goes to images/dress_eval.jpg beside FILE. A run with
+// --ansur has its own markers, so both tables live in one file.
 constexpr const char* kDocsBegin = "<!-- drape eval-dress: table begin -->";
 constexpr const char* kDocsEnd = "<!-- drape eval-dress: table end -->";
+constexpr const char* kDocsAnsurBegin = "<!-- drape eval-dress --ansur: table begin -->";
+constexpr const char* kDocsAnsurEnd = "<!-- drape eval-dress --ansur: table end -->";
 
 // The text of `path` and where its eval-dress block's content starts and ends.
 // \throw IoError if unreadable, InvalidInput naming the file if a marker is missing.
-std::tuple<std::string, size_t, size_t> docs_block(const fs::path& path) {
+std::tuple<std::string, size_t, size_t> docs_block(const fs::path& path, const std::string& begin_marker,
+                                                   const std::string& end_marker) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError("drape eval-dress: --docs " + path.string() + ": cannot read the file");
     std::ostringstream text;
     text << in.rdbuf();
     const std::string s = text.str();
-    const size_t b = s.find(kDocsBegin), e = s.find(kDocsEnd);
+    const size_t b = s.find(begin_marker), e = s.find(end_marker);
     require(b != std::string::npos && e != std::string::npos && b < e, "drape eval-dress: --docs ", path.string(),
-            ": needs the lines '", kDocsBegin, "' and then '", kDocsEnd, "' around the table to replace");
-    return {s, b + std::string(kDocsBegin).size(), e};
+            ": needs the lines '", begin_marker, "' and then '", end_marker, "' around the table to replace");
+    return {s, b + begin_marker.size(), e};
+}
+
+// A body of the evaluation: a fixed one (kEvalBodies) or an ANSUR II record.
+struct EvalCaseBody {
+    std::string name;                 // female_p50, or f10037 / m20512 (gender, subject id)
+    body::SemanticRequest request;
+    int subject_id = 0;               // ANSUR: the record's id
+    std::string stratum;              // ANSUR: why it was sampled ("height p1", "random", ...)
+    body::Gender gender = body::Gender::female;
+    double height_m = 0, weight_kg = 0, chest_m = 0, waist_m = 0, hip_m = 0;  // as requested
+};
+
+std::vector<EvalCaseBody> eval_bodies(const EvalDressArgs& args) {
+    std::vector<EvalCaseBody> bodies;
+    if (args.ansur == 0) {
+        for (const EvalBody& eb : kEvalBodies) {
+            EvalCaseBody b;
+            b.name = eb.name;
+            b.gender = eb.gender;
+            b.height_m = eb.height_m;
+            b.weight_kg = eb.weight_kg;
+            b.request.gender = eb.gender;
+            b.request[body::Semantic::height_m] = eb.height_m;
+            b.request[body::Semantic::weight_kg] = eb.weight_kg;
+            bodies.push_back(b);
+        }
+        return bodies;
+    }
+    // The record's measurements, as `drape dress --body P.json` with them: stature, mass,
+    // chest, waist, hip, thigh and calf girths, shoulder and crotch heights; the muscle
+    // proxy (not a measurement) is left to the prior.
+    for (const test::AnsurSampledRecord& s :
+         test::sample_ansur_bodies(test::load_ansur_all(args.ansur_dir), args.ansur, args.seed)) {
+        EvalCaseBody b;
+        b.gender = s.record.gender;
+        b.name = std::string(b.gender == body::Gender::female ? "f" : "m") + std::to_string(s.record.subject_id);
+        b.subject_id = s.record.subject_id;
+        b.stratum = s.stratum;
+        b.request.gender = b.gender;
+        for (int k = 0; k < body::kSemanticCount; ++k)
+            if (k != int(body::Semantic::muscle)) b.request.values[size_t(k)] = s.record.values[k];
+        const auto value = [&](body::Semantic v) { return s.record.values[int(v)]; };
+        b.height_m = value(body::Semantic::height_m);
+        b.weight_kg = value(body::Semantic::weight_kg);
+        b.chest_m = value(body::Semantic::chest_girth_m);
+        b.waist_m = value(body::Semantic::waist_girth_m);
+        b.hip_m = value(body::Semantic::hip_girth_m);
+        bodies.push_back(b);
+    }
+    return bodies;
+}
+
+// One case's result.
+struct EvalCase {
+    std::string garment, body, pose;
+    bool usable = false;
+    int vertices = 0, self_intersections = 0, steps = 0;
+    double seam_gap_m = 0, penetration_m = 0, drop_m = 0, seconds = 0;
+    bool converged = false;
+    std::string why;  // the drape's report, or the error that stopped the case
+};
+
+std::string fixed(double v, int digits) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << v;
+    return s.str();
+}
+
+// The --ansur tables: bodies with their usable cases per template, usable counts per
+// template and pose, and every failure.
+std::string ansur_tables(const std::vector<EvalCaseBody>& bodies, const std::vector<std::string>& garments,
+                         const std::vector<std::string>& poses, const std::vector<EvalCase>& cases) {
+    std::ostringstream t;
+    t << "| body | subject | gender | sampled as | stature m | mass kg | chest / waist / hip m |";
+    for (const std::string& g : garments) t << " " << g << " |";
+    t << "\n|---|---|---|---|---|---|---|";
+    for (size_t k = 0; k < garments.size(); ++k) t << "---|";
+    t << "\n";
+    const auto count = [&](const std::string& g, const std::string& b, const std::string& p, bool only_usable) {
+        return std::count_if(cases.begin(), cases.end(), [&](const EvalCase& c) {
+            return (g.empty() || c.garment == g) && (b.empty() || c.body == b) && (p.empty() || c.pose == p) &&
+                   (!only_usable || c.usable);
+        });
+    };
+    for (const EvalCaseBody& b : bodies) {
+        t << "| " << b.name << " | " << b.subject_id << " | " << body::to_string(b.gender) << " | " << b.stratum
+          << " | " << fixed(b.height_m, 3) << " | " << fixed(b.weight_kg, 1) << " | " << fixed(b.chest_m, 2) << " / "
+          << fixed(b.waist_m, 2) << " / " << fixed(b.hip_m, 2) << " |";
+        for (const std::string& g : garments) t << " " << count(g, b.name, "", true) << "/" << count(g, b.name, "", false) << " |";
+        t << "\n";
+    }
+    t << "\nUsable per template and pose (all bodies):\n\n| template |";
+    for (const std::string& p : poses) t << " " << p << " |";
+    t << " all |\n|---|";
+    for (size_t k = 0; k <= poses.size(); ++k) t << "---|";
+    t << "\n";
+    for (const std::string& g : garments) {
+        t << "| " << g << " |";
+        for (const std::string& p : poses) t << " " << count(g, "", p, true) << "/" << count(g, "", p, false) << " |";
+        t << " " << count(g, "", "", true) << "/" << count(g, "", "", false) << " |\n";
+    }
+    t << "\nFailures:\n\n";
+    bool any = false;
+    for (const EvalCase& c : cases)
+        if (!c.usable) {
+            any = true;
+            t << "- " << c.garment << " / " << c.body << " / " << c.pose << ": seam gap " << fixed(1000 * c.seam_gap_m, 2)
+              << " mm, penetration " << fixed(1000 * c.penetration_m, 2) << " mm, " << c.self_intersections
+              << " crossings, " << (c.converged ? "converged" : "not converged") << " (" << c.why << ")\n";
+        }
+    if (!any) t << "- none\n";
+    return t.str();
 }
 
 void run_eval_dress(const EvalDressArgs& args) {
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
+    require(args.ansur >= 0, "--ansur ", args.ansur, " must be >= 0 (0: the five fixed bodies)");
+    require(args.jobs >= 1 && args.jobs <= 64, "--jobs ", args.jobs, " must be in [1, 64]");
+    const bool ansur = args.ansur > 0;
+    const std::string docs_begin = ansur ? kDocsAnsurBegin : kDocsBegin, docs_end = ansur ? kDocsAnsurEnd : kDocsEnd;
     // Checked before the long run, used after it.
-    if (!args.docs.empty()) docs_block(args.docs);
-    const auto selected = [&](const EvalBody& eb) {
+    if (!args.docs.empty()) docs_block(args.docs, docs_begin, docs_end);
+    const std::vector<EvalCaseBody> all_bodies = eval_bodies(args);
+    const auto selected = [&](const EvalCaseBody& eb) {
         return args.bodies.empty() || std::find(args.bodies.begin(), args.bodies.end(), eb.name) != args.bodies.end();
     };
-    for (const std::string& b : args.bodies)
-        require(std::any_of(std::begin(kEvalBodies), std::end(kEvalBodies), [&](const EvalBody& eb) { return b == eb.name; }),
-                "--bodies: unknown body '", b, "' (female_p5, female_p50, female_p95, male_p5, male_p95)");
+    for (const std::string& b : args.bodies) {
+        std::string names;
+        for (const EvalCaseBody& eb : all_bodies) names += (names.empty() ? "" : ", ") + eb.name;
+        require(std::any_of(all_bodies.begin(), all_bodies.end(), [&](const EvalCaseBody& eb) { return b == eb.name; }),
+                "--bodies: unknown body '", b, "' (", names, ")");
+    }
+    std::vector<EvalCaseBody> bodies;
+    for (const EvalCaseBody& eb : all_bodies)
+        if (selected(eb)) bodies.push_back(eb);
     std::vector<GarmentType> types;
     for (const std::string& g : args.garments) types.push_back(garment_type_from_name(g));
     std::vector<body::Pose> poses;
@@ -375,108 +512,148 @@ void run_eval_dress(const EvalDressArgs& args) {
     options.mesh.target_edge_cm = args.edge_cm;
 
     const body::BodyModel& model = body::BodyModel::default_model();
-    nlohmann::json cases = nlohmann::json::array();
-    std::vector<std::pair<std::string, cv::Mat>> sheet_cells;
     std::ostringstream table;
     table << "| garment | body | pose | vertices | seam gap mm | penetration mm | self-int. | drop cm | converged | usable | steps | s |\n"
           << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    int usable = 0, total = 0;
-    double seconds_sum = 0;
-    for (const EvalBody& eb : kEvalBodies) {
-        if (!selected(eb)) continue;
-        body::SemanticRequest request;
-        request.gender = eb.gender;
-        request[body::Semantic::height_m] = eb.height_m;
-        request[body::Semantic::weight_kg] = eb.weight_kg;
-        const body::ShapedBody shaped = shape_requested_body(model, request, "drape eval-dress: " + std::string(eb.name));
+    // One case: the garments (inner first) on a body in pose k. An exception (a body that
+    // cannot be shaped, a proposed sizing the template refuses) is that case's failure, not
+    // the run's. Cases run on --jobs threads; results are kept in case order.
+    struct CaseSpec {
+        size_t body = 0;
+        std::string name;
+        std::vector<garment::GarmentRequest> requests;
+        size_t pose = 0;
+        bool render = false;
+    };
+    std::vector<body::ShapedBody> shaped_bodies(bodies.size());
+    std::vector<std::string> shape_errors(bodies.size());
+    std::vector<CaseSpec> specs;
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        const EvalCaseBody& eb = bodies[i];
+        try {
+            shaped_bodies[i] = shape_requested_body(model, eb.request, "drape eval-dress: " + eb.name);
+        } catch (const std::exception& e) {
+            if (!ansur) throw;  // the fixed bodies always shape
+            shape_errors[i] = e.what();
+        }
         for (size_t t = 0; t < types.size(); ++t) {
             garment::GarmentRequest garment_request;
             garment_request.type = types[t];
             garment_request.material = material;
-            for (size_t k = 0; k < poses.size(); ++k) {
-                garment::DressedOutfit out;
-                const garment::DressOutfitSummary s =
-                    garment::dress_outfit(model, shaped, poses[k], {garment_request}, options, out);
-                if (t == 0) print_arms("drape eval-dress: " + std::string(eb.name) + " / " + args.poses[k], out.arms);
-                if (s.termination != garment::DressOutfitTermination::draped)
-                    throw std::runtime_error("drape eval-dress: " + s.message);
-                const garment::DrapeSummary& d = s.drape;
-                const garment::DressingSummary& dressed = out.dressing[0];
-                const garment::GarmentStateCheck& c = out.checks[0];
-                const garment::GarmentSizing& sizing = out.sizings[0];
-                const Eigen::MatrixX3d& X = out.positions[0];
-                const Eigen::MatrixX3d& body_V = out.body_vertices;
-                // Usable by the simulator's own report and by the independent checks of the draped state.
-                const bool ok = s.usable() && s.checks_pass(out);
-                usable += ok ? 1 : 0;
-                ++total;
-                seconds_sum += d.seconds + dressed.seconds;
-                std::cout << "drape eval-dress: " << args.garments[t] << " / " << eb.name << " / " << args.poses[k]
-                          << ": " << (ok ? "usable" : "NOT usable") << ", " << d.brief_report() << std::endl;
-                table << "| " << args.garments[t] << " | " << eb.name << " | " << args.poses[k] << " | " << d.vertices
-                      << " | " << std::fixed << std::setprecision(2) << 1000 * c.max_seam_gap_m << " | "
-                      << 1000 * c.max_penetration_m << " | " << c.self_intersections << " | " << std::setprecision(1)
-                      << 100 * d.mean_drop_m << " | " << (d.converged ? "yes" : "no") << " | "
-                      << (ok ? "**yes**" : "no") << " | " << d.steps << " | " << d.seconds + dressed.seconds << " |\n";
-                table.unsetf(std::ios::floatfield);
-                cases.push_back({{"garment", args.garments[t]},
-                                 {"body", eb.name},
-                                 {"pose", args.poses[k]},
-                                 {"sizing", to_json(sizing)},
-                                 {"vertices", d.vertices},
-                                 {"seam_gap_max_m", c.max_seam_gap_m},
-                                 {"penetration_max_m", c.max_penetration_m},
-                                 {"self_intersections", c.self_intersections},
-                                 {"mean_drop_m", d.mean_drop_m},
-                                 {"converged", d.converged},
-                                 {"usable", ok},
-                                 {"steps", d.steps},
-                                 {"dressing", dressed.brief_report()},
-                                 {"drape", d.brief_report()},
-                                 {"seconds", d.seconds + dressed.seconds}});
-                // One render per template and pose, on the median woman.
-                if (std::string(eb.name) == "female_p50")
-                    sheet_cells.push_back({args.garments[t] + ", " + args.poses[k],
-                                           write_render(dir / (args.garments[t] + "_" + args.poses[k] + ".png"), body_V,
-                                                        model.faces, {&out.meshes[0]}, {X}, 300, 450)});
-            }
+            // One render per template and pose, on the median woman.
+            for (size_t k = 0; k < poses.size(); ++k)
+                specs.push_back({i, args.garments[t], {garment_request}, k, eb.name == "female_p50"});
+        }
+        // The outfit (t-shirt over pants): on the median woman of the fixed bodies, on every
+        // sampled ANSUR body. Its row reports the joint simulation (crossings between the
+        // garments included) and each garment's own check.
+        if (args.outfit && (ansur || eb.name == "female_p50")) {
+            std::vector<garment::GarmentRequest> requests(2);
+            requests[0].type = GarmentType::pants;
+            requests[1].type = GarmentType::tshirt;
+            for (garment::GarmentRequest& r : requests) r.material = material;
+            for (size_t k = 0; k < poses.size(); ++k) specs.push_back({i, "tshirt+pants", requests, k, !ansur});
         }
     }
-    // The outfit (t-shirt over pants) on the median woman in every pose.
-    if (args.outfit && selected(kEvalBodies[1])) {
-        const EvalBody& eb = kEvalBodies[1];
-        body::SemanticRequest request;
-        request.gender = eb.gender;
-        request[body::Semantic::height_m] = eb.height_m;
-        request[body::Semantic::weight_kg] = eb.weight_kg;
-        const body::ShapedBody shaped = shape_requested_body(model, request, "drape eval-dress");
-        std::vector<garment::GarmentRequest> requests(2);
-        requests[0].type = GarmentType::pants;
-        requests[1].type = GarmentType::tshirt;
-        for (garment::GarmentRequest& r : requests) r.material = material;
-        for (size_t k = 0; k < poses.size(); ++k) {
+    std::vector<EvalCase> cases(specs.size());
+    std::vector<nlohmann::json> case_json(specs.size());
+    std::vector<cv::Mat> renders(specs.size());
+    std::mutex print_mutex;
+    int done = 0;
+    const auto run_case = [&](size_t index) {
+        const CaseSpec& spec = specs[index];
+        const EvalCaseBody& eb = bodies[spec.body];
+        EvalCase c;
+        c.garment = spec.name;
+        c.body = eb.name;
+        c.pose = args.poses[spec.pose];
+        nlohmann::json sizings = nlohmann::json::array();
+        std::string arms;
+        try {
+            if (!shape_errors[spec.body].empty()) throw std::runtime_error(shape_errors[spec.body]);
             garment::DressedOutfit out;
-            const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped, poses[k], requests, options, out);
-            if (s.termination != garment::DressOutfitTermination::draped)
-                throw std::runtime_error("drape eval-dress: the outfit: " + s.message);
-            // The outfit's row reports the joint simulation (crossings between the garments included).
+            const garment::DressOutfitSummary s = garment::dress_outfit(model, shaped_bodies[spec.body],
+                                                                        poses[spec.pose], spec.requests, options, out);
+            if (out.arms.crossings_before > 0) arms = out.arms.brief_report();
+            if (s.termination != garment::DressOutfitTermination::draped) throw std::runtime_error(s.message);
             const garment::DrapeSummary& d = s.drape;
-            std::cout << "drape eval-dress: tshirt+pants / " << eb.name << " / " << args.poses[k] << ": "
-                      << d.brief_report() << std::endl;
-            table << "| tshirt+pants | " << eb.name << " | " << args.poses[k] << " | " << d.vertices << " | " << std::fixed
-                  << std::setprecision(2) << 1000 * d.seam_gap_max_m << " | " << 1000 * d.penetration_max_m << " | "
-                  << d.self_intersections << " | " << std::setprecision(1) << 100 * d.mean_drop_m << " | "
-                  << (d.converged ? "yes" : "no") << " | " << (d.usable() ? "**yes**" : "no") << " | " << d.steps
-                  << " | " << d.seconds << " |\n";
-            table.unsetf(std::ios::floatfield);
-            cases.push_back({{"garment", "tshirt+pants"}, {"body", eb.name}, {"pose", args.poses[k]},
-                             {"vertices", d.vertices}, {"mean_drop_m", d.mean_drop_m}, {"usable", d.usable()},
-                             {"drape", d.brief_report()},
-                             {"seconds", d.seconds}});
-            sheet_cells.push_back({"tshirt+pants, " + args.poses[k],
-                                   write_render(dir / ("tshirt+pants_" + args.poses[k] + ".png"), out.body_vertices,
-                                                model.faces, {&out.meshes[0], &out.meshes[1]}, out.positions, 300, 450)});
+            // Usable by the simulator's own report and by the independent checks of each draped garment.
+            c.usable = s.usable() && s.checks_pass(out);
+            c.vertices = d.vertices;
+            c.seam_gap_m = d.seam_gap_max_m;
+            c.penetration_m = d.penetration_max_m;
+            c.self_intersections = d.self_intersections;
+            for (const garment::GarmentStateCheck& check : out.checks) {
+                c.seam_gap_m = std::max(c.seam_gap_m, check.max_seam_gap_m);
+                c.penetration_m = std::max(c.penetration_m, check.max_penetration_m);
+                c.self_intersections = std::max(c.self_intersections, check.self_intersections);
+            }
+            c.drop_m = d.mean_drop_m;
+            c.converged = d.converged;
+            c.steps = d.steps;
+            c.seconds = s.seconds_dress + d.seconds;
+            c.why = d.brief_report();
+            for (size_t g = 0; g < out.dressing.size(); ++g)
+                c.why += "; dressing " + garment_type_name(spec.requests[g].type) + ": " + out.dressing[g].brief_report();
+            for (const garment::GarmentSizing& z : out.sizings) sizings.push_back(to_json(z));
+            if (spec.render) {
+                std::vector<const garment::GarmentMesh*> meshes;
+                for (const garment::GarmentMesh& m : out.meshes) meshes.push_back(&m);
+                renders[index] = write_render(dir / (spec.name + "_" + c.pose + ".png"), out.body_vertices,
+                                              model.faces, meshes, out.positions, 300, 450);
+            }
+        } catch (const std::exception& e) {
+            c.usable = false;
+            c.why = std::string("refused: ") + e.what();
         }
+        case_json[index] = {{"garment", c.garment},
+                            {"body", eb.name},
+                            {"subject_id", eb.subject_id},
+                            {"pose", c.pose},
+                            {"sizing", sizings},
+                            {"vertices", c.vertices},
+                            {"seam_gap_max_m", c.seam_gap_m},
+                            {"penetration_max_m", c.penetration_m},
+                            {"self_intersections", c.self_intersections},
+                            {"mean_drop_m", c.drop_m},
+                            {"converged", c.converged},
+                            {"usable", c.usable},
+                            {"steps", c.steps},
+                            {"report", c.why},
+                            {"seconds", c.seconds}};
+        const std::lock_guard<std::mutex> lock(print_mutex);
+        if (!arms.empty()) std::cerr << "drape eval-dress: " << eb.name << " / " << c.pose << ": " << arms << "\n";
+        std::cout << "drape eval-dress: " << ++done << "/" << specs.size() << ": " << c.garment << " / " << eb.name
+                  << " / " << c.pose << ": " << (c.usable ? "usable" : "NOT usable") << ", " << c.why << std::endl;
+        cases[index] = std::move(c);
+    };
+    {
+        std::atomic<size_t> next{0};
+        const auto worker = [&] {
+            for (size_t i = next++; i < specs.size(); i = next++) run_case(i);
+        };
+        std::vector<std::thread> threads;
+        for (int j = 1; j < args.jobs; ++j) threads.emplace_back(worker);
+        worker();
+        for (std::thread& t : threads) t.join();
+    }
+    std::vector<std::string> table_garments = args.garments;
+    if (args.outfit) table_garments.push_back("tshirt+pants");
+    int usable = 0, total = 0;
+    double seconds_sum = 0;
+    nlohmann::json cases_json = nlohmann::json::array();
+    std::vector<std::pair<std::string, cv::Mat>> sheet_cells;
+    for (size_t i = 0; i < specs.size(); ++i) {
+        const EvalCase& c = cases[i];
+        usable += c.usable ? 1 : 0;
+        ++total;
+        seconds_sum += c.seconds;
+        table << "| " << c.garment << " | " << c.body << " | " << c.pose << " | " << c.vertices << " | "
+              << fixed(1000 * c.seam_gap_m, 2) << " | " << fixed(1000 * c.penetration_m, 2) << " | "
+              << c.self_intersections << " | " << fixed(100 * c.drop_m, 1) << " | " << (c.converged ? "yes" : "no")
+              << " | " << (c.usable ? "**yes**" : "no") << " | " << c.steps << " | " << fixed(c.seconds, 1) << " |\n";
+        cases_json.push_back(case_json[i]);
+        if (specs[i].render) sheet_cells.push_back({c.garment + ", " + c.pose, renders[i]});
     }
     // Contact sheet: a row per garment (and the outfit), a column per pose.
     std::string contact_sheet_jpeg;
@@ -496,12 +673,17 @@ void run_eval_dress(const EvalDressArgs& args) {
         contact_sheet_jpeg.assign(jpeg.begin(), jpeg.end());
         write_text_atomically(dir / "contact_sheet.jpg", contact_sheet_jpeg);
     }
-    table << "\n" << usable << " of " << total << " cases usable; " << std::fixed << std::setprecision(1)
-          << seconds_sum / std::max(total, 1) << " s per case on average (dress + drape).\n";
+    std::ostringstream summary;
+    summary << usable << " of " << total << " cases usable (" << fixed(100.0 * usable / std::max(total, 1), 1)
+            << " %); " << fixed(seconds_sum / std::max(total, 1), 1) << " s per case on average (dress + drape).\n";
+    table << "\n" << summary.str();
     write_text_atomically(dir / "table.md", table.str());
+    const std::string docs_table =
+        ansur ? ansur_tables(bodies, table_garments, args.poses, cases) + "\n" + summary.str() : table.str();
+    if (ansur) write_text_atomically(dir / "bodies.md", docs_table);
     if (!args.docs.empty()) {
-        const auto [text, begin, end] = docs_block(args.docs);
-        write_text_atomically(args.docs, text.substr(0, begin) + "\n" + table.str() + text.substr(end));
+        const auto [text, begin, end] = docs_block(args.docs, docs_begin, docs_end);
+        write_text_atomically(args.docs, text.substr(0, begin) + "\n" + docs_table + text.substr(end));
         if (!contact_sheet_jpeg.empty()) {
             const fs::path images = fs::path(args.docs).parent_path() / "images";
             fs::create_directories(images);
@@ -509,31 +691,43 @@ void run_eval_dress(const EvalDressArgs& args) {
         }
         std::cout << "drape eval-dress: wrote the table into " << args.docs << "\n";
     }
-    write_json_file(dir / "results.json", {{"edge_cm", args.edge_cm},
-                                           {"material", material_source},
-                                           {"usable", usable},
-                                           {"cases", cases}});
-    std::cout << table.str();
+    nlohmann::json results = {{"edge_cm", args.edge_cm}, {"material", material_source}, {"usable", usable},
+                              {"total", total}, {"cases", cases_json}};
+    if (ansur) results["ansur"] = {{"count", args.ansur}, {"seed", args.seed}, {"dir", args.ansur_dir}};
+    write_json_file(dir / "results.json", results);
+    std::cout << (ansur ? docs_table : table.str());
 }
 
 void add_eval_dress_command(CLI::App& app) {
     auto args = std::make_shared<EvalDressArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "eval-dress", "Dress and drape every template on five ANSUR bodies in three poses; writes table.md, "
-                      "results.json and one render per template and pose (the median woman)");
+        "eval-dress", "Dress and drape every template on five ANSUR bodies (or --ansur N bodies sampled from the "
+                      "ANSUR II records) in three poses; writes table.md, results.json and one render per template "
+                      "and pose (the median woman)");
     cmd->add_option("--garments", args->garments, "templates (default: skirt pants tshirt dress)");
     cmd->add_option("--poses", args->poses, "poses (default: a_pose arms_down walking)");
     cmd->add_option("--bodies", args->bodies,
                     "evaluation bodies (default: female_p5 female_p50 female_p95 male_p5 male_p95; the outfit only "
-                    "with female_p50)");
+                    "with female_p50); with --ansur, names of the sample (f<subject id>, m<subject id>)");
+    cmd->add_option("--ansur", args->ansur,
+                    "instead of the five fixed bodies, N >= 8 real records of the ANSUR II survey: per gender the "
+                    "1st and 99th percentiles of stature and of body mass, the rest drawn at random (--seed); each "
+                    "body shaped to the record's stature, mass, girths and heights; the outfit on every body; "
+                    "bodies.md gets the per-body table");
+    cmd->add_option("--seed", args->seed, "seed of the --ansur sampling (default 1)");
+    cmd->add_option("--ansur-dir", args->ansur_dir,
+                    "folder of ANSUR_II_FEMALE_Public.csv and ANSUR_II_MALE_Public.csv (default "
+                    "../shared/data/anthropometry)");
+    cmd->add_option("--jobs", args->jobs, "cases run at once, on threads (default 1)");
     cmd->add_option("--edge", args->edge_cm, "mesh target edge length, cm (default 4)");
     cmd->add_option("--material", args->material, "fabric name or file (default gray-interlock)");
-    cmd->add_flag("!--no-outfit", args->outfit, "skip the outfit (t-shirt over pants on the median woman)");
+    cmd->add_flag("!--no-outfit", args->outfit, "skip the outfit (t-shirt over pants)");
     cmd->add_option("--materials", args->materials_dir, "folder of fabric JSON files");
     cmd->add_option("--docs", args->docs,
                     "also replace the table between the lines '<!-- drape eval-dress: table begin -->' and "
-                    "'<!-- drape eval-dress: table end -->' of this Markdown file (e.g. docs/dressing.md) and "
-                    "write the contact sheet to images/dress_eval.jpg beside it");
+                    "'<!-- drape eval-dress: table end -->' (with --ansur: '<!-- drape eval-dress --ansur: table "
+                    "begin -->' ... 'end -->') of this Markdown file (e.g. docs/dressing.md) and write the contact "
+                    "sheet to images/dress_eval.jpg beside it");
     cmd->add_option("--out", args->out, "output folder")->required();
     cmd->callback([args] { run_eval_dress(*args); });
 }

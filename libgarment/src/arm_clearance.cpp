@@ -52,6 +52,25 @@ std::string ArmClearanceSummary::brief_report() const {
     return os.str();
 }
 
+body::Pose raise_arms(const body::Pose& pose, double right_degrees, double left_degrees) {
+    std::string why;
+    require(pose.is_valid(&why), "raise_arms: pose: ", why);
+    require(std::isfinite(right_degrees) && std::isfinite(left_degrees), "raise_arms: angles ", right_degrees, ", ",
+            left_degrees, " must be finite");
+    // Rotations about +Z lower the right arm and raise the left one (named_pose).
+    body::Pose p = pose;
+    const std::array<std::pair<body::Joint, double>, 2> turns = {
+        std::make_pair(body::Joint::right_shoulder, -right_degrees), std::make_pair(body::Joint::left_shoulder, left_degrees)};
+    for (const auto& [joint, deg] : turns) {
+        const int j = body::index(joint);
+        const Eigen::Vector3d a = p.rotations.row(j).transpose();
+        const Eigen::AngleAxisd old(a.norm(), a.norm() > 0 ? Eigen::Vector3d(a.normalized()) : Eigen::Vector3d::UnitX());
+        const Eigen::AngleAxisd turned(Eigen::AngleAxisd(deg * kPi / 180, Eigen::Vector3d::UnitZ()) * old);
+        p.rotations.row(j) = (turned.angle() * turned.axis()).transpose();
+    }
+    return p;
+}
+
 body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::ShapedBody& shaped,
                                  const body::Pose& pose, const ArmClearanceOptions& options,
                                  ArmClearanceSummary* summary) {
@@ -87,20 +106,7 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
         }
         return n;
     };
-    // Raising: rotations about +Z lower the right arm and raise the left one (named_pose).
-    auto raised = [&](double right_deg, double left_deg) {
-        body::Pose p = pose;
-        const std::array<std::pair<body::Joint, double>, 2> turns = {
-            std::make_pair(body::Joint::right_shoulder, -right_deg), std::make_pair(body::Joint::left_shoulder, left_deg)};
-        for (const auto& [joint, deg] : turns) {
-            const int j = body::index(joint);
-            const Eigen::Vector3d a = p.rotations.row(j).transpose();
-            const Eigen::AngleAxisd old(a.norm(), a.norm() > 0 ? Eigen::Vector3d(a.normalized()) : Eigen::Vector3d::UnitX());
-            const Eigen::AngleAxisd turned(Eigen::AngleAxisd(deg * kPi / 180, Eigen::Vector3d::UnitZ()) * old);
-            p.rotations.row(j) = (turned.angle() * turned.axis()).transpose();
-        }
-        return p;
-    };
+    auto raised = [&](double right_deg, double left_deg) { return raise_arms(pose, right_deg, left_deg); };
     std::array<int, 2> n = crossings(pose);
     s.crossings_before = n[0] + n[1];
     std::array<double, 2> raise{0, 0};  // right, left

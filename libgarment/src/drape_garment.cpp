@@ -1,4 +1,5 @@
 #include <drape/garment/drape_garment.hpp>
+#include <drape/garment/arm_clearance.hpp>
 
 #include <drape/core/errors.hpp>
 
@@ -218,11 +219,12 @@ DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, co
                              Eigen::MatrixX3d& out_positions, DressingSummary* dressing) {
     std::string why;
     require(pose.is_valid(&why), "dress_and_drape: pose: ", why);
-    const body::Pose rest = body::Pose::rest();
+    // Dressed in the rest A-pose (arms raised if a sleeve cannot be placed clear there).
+    body::Pose rest;
     Eigen::MatrixX3d X0;
-    const DressingSummary dressed = dress_garment(pattern, mesh, model, shaped, rest, dressing_options, X0);
+    const DressingSummary dressed = dress_for_drape(pattern, mesh, model, shaped, dressing_options, X0, rest);
     if (dressing) *dressing = dressed;
-    const bool at_rest = pose.translation.isZero(0) && pose.rotations.isZero(0);
+    const bool at_rest = (pose.translation - rest.translation).isZero(0) && (pose.rotations - rest.rotations).isZero(0);
     const std::vector<Eigen::MatrixX3d> path =
         at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
                 : pose_path(model, shaped, rest, pose, 11);
@@ -320,7 +322,17 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
     for (size_t g = 0; g < materials.size(); ++g)
         require(materials[g].is_valid(&why), "dress_and_drape_outfit: material of garment ", g, ": ", why);
     require(pose.is_valid(&why), "dress_and_drape_outfit: pose: ", why);
-    const body::Pose rest = body::Pose::rest();
+    // Every garment is dressed in one pose: the rest A-pose, or the one dress_for_drape
+    // chooses for the first garment with sleeves (its arms raised if its sleeves cannot be
+    // placed clear in the rest pose); that garment's dressed state is reused below.
+    body::Pose rest = body::Pose::rest();
+    std::vector<std::pair<DressingSummary, Eigen::MatrixX3d>> with_sleeves(patterns.size());
+    for (size_t g = 0; g < patterns.size(); ++g)
+        if (detail::has_sleeves(patterns[g])) {
+            with_sleeves[g].first =
+                dress_for_drape(patterns[g], meshes[g], model, shaped, dressing_options, with_sleeves[g].second, rest);
+            break;
+        }
     const body::PosedSkeleton skel = body::forward_kinematics(shaped.joints, rest);
     const auto J = [&](body::Joint j) -> Eigen::Vector3d { return skel.joints.row(body::index(j)).transpose(); };
     const std::vector<Eigen::Vector3d> trunk = {J(body::Joint::pelvis), J(body::Joint::spine), J(body::Joint::chest),
@@ -333,7 +345,6 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
     // its crossings. A garment with sleeves always gets the automatic count, so its dressed
     // state is computed once and reused.
     const Eigen::MatrixX3i sewn = detail::sewn_faces(all);
-    std::vector<std::pair<DressingSummary, Eigen::MatrixX3d>> with_sleeves(patterns.size());
     std::vector<DressingSummary> summaries;
     auto dress_all = [&](int sleeveless_passes) {
         summaries.clear();
@@ -379,7 +390,7 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
         else summaries = one_pass_summaries;
     }
     if (dressing) *dressing = summaries;
-    const bool at_rest = pose.translation.isZero(0) && pose.rotations.isZero(0);
+    const bool at_rest = (pose.translation - rest.translation).isZero(0) && (pose.rotations - rest.rotations).isZero(0);
     const std::vector<Eigen::MatrixX3d> path =
         at_rest ? std::vector<Eigen::MatrixX3d>{body::pose_body(model, shaped, rest).vertices}
                 : pose_path(model, shaped, rest, pose, 11);

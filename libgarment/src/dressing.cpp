@@ -1,5 +1,6 @@
 // Initial garment registration: rigid alignment, skinning and interpenetration removal.
 #include <drape/garment/dressing.hpp>
+#include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 
 #include "dressing_internal.hpp"
@@ -216,7 +217,10 @@ void open_armholes(const Pattern& pattern, const GarmentMesh& mesh, const body::
 // around the posed arms (cap on the placed armhole), moved outside the arm and outside the
 // torso panels. Radial moves keep each point's angle and height about its axis, so
 // layers that do not cross do not start crossing.
-void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
+// Returns how far down its arm the lowest sleeve cap starts (m; 0 without sleeves), or
+// infinity if a sleeve found no place clear of the torso panels within kMaxSleeveOffsetM
+// (it then starts there, partly inside them).
+double place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
                         const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
                         const Eigen::VectorXd& pelvis_weight, double clearance, Eigen::MatrixX3d& X) {
     const auto J = [&](Joint j) -> Eigen::Vector3d { return skel.joints.row(index(j)).transpose(); };
@@ -268,7 +272,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
         }
         X.row(v) = q.transpose();
     }
-    if (!any_sleeve) return;
+    if (!any_sleeve) return 0;
     open_armholes(pattern, mesh, skel, arms, clearance, X);
     // Sleeves: tubes around the posed arms, their caps open. Each sleeve starts as close to
     // the armhole as it can while every point of it, pushed outside its arm, stays
@@ -281,6 +285,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
     torso_cloth.finish();
     const auto torso_panels = [](double) { return Eigen::Vector2d(0.15, 0.1); };  // (unused for sleeves)
     Eigen::MatrixX3d best = X;
+    double lowest = 0;
     for (const BodyPart side : {BodyPart::left_sleeve, BodyPart::right_sleeve}) {
         for (double offset = kSleeveOffsetM;; offset += 0.01) {
             Eigen::MatrixX3d S = detail::wrap_panels(pattern, mesh, skel.joints, torso_panels, nullptr, &X, offset);
@@ -294,6 +299,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
                 S.row(v) = p.transpose();
             }
             if (clear || offset >= kMaxSleeveOffsetM) {
+                lowest = std::max(lowest, clear ? offset : std::numeric_limits<double>::infinity());
                 for (int v = 0; v < nv; ++v)
                     if (role_v(v) == detail::Role::sleeve &&
                         pattern.placements[size_t(mesh.panel_of_vertex(v))].body_part == side)
@@ -303,6 +309,7 @@ void place_outside_body(const Pattern& pattern, const GarmentMesh& mesh, const b
         }
     }
     X = best;
+    return lowest;
 }
 
 }  // namespace
@@ -443,6 +450,8 @@ std::string DressingSummary::brief_report() const {
        << " mm, alignment rms "
        << alignment_rms_m << " m, " << seconds << " s";
     if (skirt_waist_drop_m != 0) os << ", skirt waist " << 100 * skirt_waist_drop_m << " cm below the spine joint";
+    if (sleeve_cap_offset_m > 0) os << ", sleeve caps " << 100 * sleeve_cap_offset_m << " cm down the arms";
+    if (arms_raised_deg != 0) os << ", dressed with the arms raised " << arms_raised_deg << " deg";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
 }
@@ -622,13 +631,13 @@ void skin_to_pose(const Pattern& pattern, const GarmentMesh& mesh, const body::B
     }
 }
 
-void place_on_posed_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
+double place_on_posed_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
                          const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
                          const Eigen::VectorXd& pelvis_weight, double clearance_m, int placement_passes,
                          Eigen::MatrixX3d& X) {
     const int nv = mesh.cloth.vertex_count();
     Eigen::MatrixX3d placed = X;
-    place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, clearance_m, placed);
+    const double sleeve_offset = place_outside_body(pattern, mesh, skel, body_v, dominant, pelvis_weight, clearance_m, placed);
     // Sleeves are placed anew on the posed arms (not deformed from the skinned state):
     // they take their new places at once, the rest moves guarded.
     for (int v = 0; v < nv; ++v)
@@ -642,6 +651,7 @@ void place_on_posed_body(const Pattern& pattern, const GarmentMesh& mesh, const 
         if (now >= left) break;
         left = now;
     }
+    return sleeve_offset;
 }
 
 void measure_dressed(const GarmentMesh& mesh, const Eigen::MatrixX3d& X, const Eigen::MatrixXd& body_v,
@@ -687,8 +697,8 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
     // 3. Radial placement outside the posed body (see place_outside_body), then the
     //    sleeves on the posed arms around the placed torso.
     const Eigen::MatrixXd body_v = body::pose_body(model, shaped, pose).vertices;
-    detail::place_on_posed_body(pattern, mesh, skel, body_v, dominant, wrapped.pelvis_weight, options.clearance_m,
-                                placement_passes, X);
+    summary.sleeve_cap_offset_m = detail::place_on_posed_body(pattern, mesh, skel, body_v, dominant, wrapped.pelvis_weight,
+                                                        options.clearance_m, placement_passes, X);
 
     // 4. Interpenetration removal.
     detail::BodyOffenders offenders(pattern, mesh, body_v, model.faces, dominant, options.clearance_m);
@@ -735,6 +745,21 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     }
     one.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return one;
+}
+
+DressingSummary dress_for_drape(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
+                                const body::ShapedBody& shaped, const DressingOptions& options,
+                                Eigen::MatrixX3d& positions, body::Pose& dressing_pose) {
+    const auto t0 = std::chrono::steady_clock::now();
+    DressingSummary s;
+    for (double raise = 0;; raise += kDressingArmRaiseStepDeg) {
+        dressing_pose = raise_arms(body::Pose::rest(), raise, raise);
+        s = dress_garment(pattern, mesh, model, shaped, dressing_pose, options, positions);
+        s.arms_raised_deg = raise;
+        if (!detail::has_sleeves(pattern) || s.max_seam_gap_m <= kMaxDressingSeamGapM || raise + kDressingArmRaiseStepDeg > kMaxDressingArmRaiseDeg + 1e-9) break;
+    }
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return s;
 }
 
 std::vector<Eigen::MatrixX3d> pose_path(const body::BodyModel& model, const body::ShapedBody& shaped,

@@ -54,8 +54,9 @@ void skin_to_pose(const Pattern& pattern, const GarmentMesh& mesh, const body::B
                   const std::vector<int>& dominant, const Eigen::VectorXd& pelvis_weight, Eigen::MatrixX3d& X);
 
 /// Stage 3: radial placement outside the posed body (body_v, #B x 3), then the sleeves on
-/// the posed arms around the placed torso; `placement_passes` guarded passes.
-void place_on_posed_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
+/// the posed arms around the placed torso; `placement_passes` guarded passes. Returns
+/// DressingSummary::sleeve_cap_offset_m.
+double place_on_posed_body(const Pattern& pattern, const GarmentMesh& mesh, const body::PosedSkeleton& skel,
                          const Eigen::MatrixXd& body_v, const std::vector<int>& dominant,
                          const Eigen::VectorXd& pelvis_weight, double clearance_m, int placement_passes,
                          Eigen::MatrixX3d& X);

@@ -112,6 +112,27 @@ SkirtWaistband skirt_waist_fit(const body::BodyModel& model, const body::ShapedB
     return narrowest;
 }
 
+namespace {
+// The faces of the right upper arm: every corner skinned mainly to the right shoulder or
+// elbow joint (body::dominant_joints). A section of the whole body normal to the humerus
+// runs through the armpit into the trunk wherever the arm touches it (a heavy body in the
+// rest A-pose: 176-188 cm "arm" girths at the prior's heavy corners); a section of these
+// faces alone is the arm's.
+Eigen::MatrixXi right_upper_arm_faces(const body::BodyModel& model) {
+    const std::vector<int> dominant = body::dominant_joints(model);
+    const auto on_arm = [&](int v) {
+        const int j = dominant[size_t(v)];
+        return j == body::index(body::Joint::right_shoulder) || j == body::index(body::Joint::right_elbow);
+    };
+    std::vector<int> kept;
+    for (Eigen::Index f = 0; f < model.faces.rows(); ++f)
+        if (on_arm(model.faces(f, 0)) && on_arm(model.faces(f, 1)) && on_arm(model.faces(f, 2))) kept.push_back(int(f));
+    Eigen::MatrixXi F(Eigen::Index(kept.size()), 3);
+    for (size_t k = 0; k < kept.size(); ++k) F.row(Eigen::Index(k)) = model.faces.row(kept[k]);
+    return F;
+}
+}  // namespace
+
 double upper_arm_girth(const body::BodyModel& model, const body::ShapedBody& shaped, double sleeve_length_cm) {
     require_shape_of(model, shaped, "upper_arm_girth");
     require(std::isfinite(sleeve_length_cm) && sleeve_length_cm > 0, "upper_arm_girth: sleeve length ",
@@ -121,10 +142,12 @@ double upper_arm_girth(const body::BodyModel& model, const body::ShapedBody& sha
     const Eigen::Vector3d axis = elbow - shoulder;
     const double length = axis.norm();
     require(length > 0, "upper_arm_girth: the shoulder and elbow joints coincide");
+    const Eigen::MatrixXi arm_faces = right_upper_arm_faces(model);
+    require(arm_faces.rows() > 0, "upper_arm_girth: the model has no faces skinned to the right upper arm");
     const double t_end = std::clamp(0.01 * sleeve_length_cm / length, 0.35, 0.95);
     double girth = 0;
     for (double t = 0.35; t <= t_end + 1e-9; t += 0.05)
-        girth = std::max(girth, body::section_girth(shaped.vertices, model.faces, shoulder + t * axis, axis));
+        girth = std::max(girth, body::section_girth(shaped.vertices, arm_faces, shoulder + t * axis, axis));
     require(girth > 0, "upper_arm_girth: no section of the right upper arm");
     return girth;
 }

@@ -110,3 +110,40 @@ TEST_CASE("drape eval-dress --docs replaces the table block of a Markdown file",
     r = run_drape(common + " --docs \"" + (dir / "missing.md").string() + "\"");
     CHECK(r.exit_code == 3);
 }
+
+TEST_CASE("drape eval-dress --ansur dresses a body sampled from the ANSUR II records", "[apps][dress]") {
+    DRAPE_REQUIRE_SHARED(material, "materials/gray-interlock.json");
+    DRAPE_REQUIRE_SHARED(anthropometry, "data/anthropometry");
+    const auto dir = drape::test::scratch_dir("cli_eval_dress_ansur");
+    // The shortest 1 % of the women comes first in every sample (female, stature p1:
+    // subject 28740, 1.483 m, 44.2 kg); one skirt in A-pose keeps the run short.
+    const std::string common = "eval-dress --seed 3 --ansur-dir \"" + anthropometry.string() +
+                               "\" --materials \"" + material.parent_path().string() + "\" ";
+    auto r = run_drape(common + "--ansur 8 --bodies f28740 --garments skirt --poses a_pose --no-outfit --out \"" +
+                       dir.string() + "\"");
+    INFO(r.out);
+    REQUIRE(r.exit_code == 0);
+    std::ifstream in(dir / "results.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    CHECK(j["ansur"]["count"] == 8);
+    CHECK(j["ansur"]["seed"] == 3);
+    REQUIRE(j["cases"].size() == 1);
+    const nlohmann::json& c = j["cases"][0];
+    CHECK(c["body"] == "f28740");
+    CHECK(c["subject_id"] == 28740);
+    CHECK(c["garment"] == "skirt");
+    CHECK(c["usable"].get<bool>());
+    CHECK(c["seam_gap_max_m"].get<double>() < 1e-3);
+    CHECK(c["penetration_max_m"].get<double>() <= 1e-3);
+    // The per-body table names the record, its gender, stature and mass.
+    std::ifstream bodies_md(dir / "bodies.md");
+    const std::string bodies((std::istreambuf_iterator<char>(bodies_md)), std::istreambuf_iterator<char>());
+    CHECK(bodies.find("| f28740 | 28740 | female | height p1 | 1.483 | 44.2 |") != std::string::npos);
+    CHECK(bodies.find("1 of 1 cases usable (100.0 %)") != std::string::npos);
+    // Fewer than the eight strata, or a name outside the sample, is refused.
+    r = run_drape(common + "--ansur 4 --out \"" + dir.string() + "\"");
+    CHECK(r.exit_code == 2);
+    r = run_drape(common + "--ansur 8 --bodies female_p50 --out \"" + dir.string() + "\"");
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("f28740") != std::string::npos);
+}

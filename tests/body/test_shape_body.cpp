@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "ansur_records.hpp"
+#include <drape/fixtures/ansur_records.hpp>
 #include "test_paths.hpp"
 
 using namespace drape::body;

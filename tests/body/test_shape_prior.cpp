@@ -3,7 +3,7 @@
 #include <drape/body/shape_prior.hpp>
 #include <drape/core/errors.hpp>
 
-#include "ansur_records.hpp"
+#include <drape/fixtures/ansur_records.hpp>
 #include "test_paths.hpp"
 
 #include <catch2/catch.hpp>
@@ -435,4 +435,54 @@ TEST_CASE("ANSUR records: the sample is deterministic, spread out and in SI unit
 
     const auto everyone = drape::test::load_ansur_all(dir);
     CHECK(everyone.size() == 1986 + 4082);
+}
+
+TEST_CASE("sample_ansur_bodies: both genders' stature and mass extremes, then seeded random records",
+          "[body][prior]") {
+    DRAPE_REQUIRE_SHARED(dir, "data/anthropometry");
+    const std::vector<AnsurRecord> all = drape::test::load_ansur_all(dir);
+    const std::vector<drape::test::AnsurSampledRecord> a = drape::test::sample_ansur_bodies(all, 14, 1);
+    REQUIRE(a.size() == 14);
+    // The first eight are the strata, female then male.
+    const char* strata[] = {"height p1", "height p99", "weight p1", "weight p99"};
+    for (int k = 0; k < 8; ++k) {
+        INFO(k << ": " << a[size_t(k)].stratum);
+        CHECK(a[size_t(k)].stratum == strata[k % 4]);
+        CHECK(a[size_t(k)].record.gender == (k < 4 ? Gender::female : Gender::male));
+    }
+    for (size_t k = 8; k < a.size(); ++k) {
+        CHECK(a[k].stratum == "random");
+        CHECK(a[k].record.gender == (k % 2 == 0 ? Gender::female : Gender::male));
+    }
+    // Each stratum's record lies at its percentile of its gender: about 1 % of the gender's
+    // records are below a p1 record, 99 % below a p99 one.
+    for (int k = 0; k < 8; ++k) {
+        const AnsurRecord& r = a[size_t(k)].record;
+        const int s = k % 4 < 2 ? static_cast<int>(Semantic::height_m) : static_cast<int>(Semantic::weight_kg);
+        int below = 0, n = 0;
+        for (const AnsurRecord& o : all)
+            if (o.gender == r.gender) {
+                ++n;
+                below += o.values[s] < r.values[s] ? 1 : 0;
+            }
+        const double share = double(below) / n, wanted = k % 2 == 0 ? 0.01 : 0.99;
+        INFO(a[size_t(k)].stratum << ": " << 100 * share << " % below, value " << r.values[s]);
+        CHECK(std::abs(share - wanted) < 0.015);
+    }
+    // Measured: the heaviest woman sampled is 97.3 kg, the heaviest man 124.1 kg.
+    CHECK(a[3].record.values[static_cast<int>(Semantic::weight_kg)] == Approx(97.3));
+    CHECK(a[7].record.values[static_cast<int>(Semantic::weight_kg)] == Approx(124.1));
+    // No record twice; the same seed gives the same sample, another seed other random records.
+    for (size_t i = 0; i < a.size(); ++i)
+        for (size_t j = i + 1; j < a.size(); ++j)
+            CHECK(!(a[i].record.subject_id == a[j].record.subject_id && a[i].record.gender == a[j].record.gender));
+    const auto b = drape::test::sample_ansur_bodies(all, 14, 1), c = drape::test::sample_ansur_bodies(all, 14, 2);
+    int same_random = 0;
+    for (size_t k = 0; k < a.size(); ++k) {
+        CHECK(b[k].record.subject_id == a[k].record.subject_id);
+        if (k < 8) CHECK(c[k].record.subject_id == a[k].record.subject_id);
+        else same_random += c[k].record.subject_id == a[k].record.subject_id ? 1 : 0;
+    }
+    CHECK(same_random < 2);
+    CHECK_THROWS_AS(drape::test::sample_ansur_bodies(all, 7, 1), drape::InvalidInput);
 }

@@ -11,6 +11,7 @@
 #include <drape/core/errors.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/dressing.hpp>
+#include <drape/garment/garment_sizing.hpp>
 #include <drape/fixtures/eval_bodies.hpp>
 #include <drape/core/point_in_mesh.hpp>
 #include <drape/garment/pants.hpp>
@@ -403,6 +404,10 @@ struct ShapedAnsurBody {
         request.gender = a.gender;
         request[body::Semantic::height_m] = a.height_m;
         request[body::Semantic::weight_kg] = a.weight_kg;
+        shape(request);
+    }
+    explicit ShapedAnsurBody(const body::SemanticRequest& request) { shape(request); }
+    void shape(const body::SemanticRequest& request) {
         REQUIRE(body::shape_body(model, model.prior.complete(request), body::ShapeOptions{}, shaped).usable());
         m = body::measure_body(model, shaped.vertices);
         posed = body::pose_body(model, shaped, pose);
@@ -688,6 +693,28 @@ TEST_CASE("drape: the 5th-percentile woman's t-shirt through a walking step come
     CHECK(s.steps < 450);
 }
 
+// The body of a diagnostic: an evaluation body by name (female_p50, ...), or a record's
+// measurements "female|male,height,weight,chest,waist,hip,thigh,calf,shoulder,crotch" (SI).
+ShapedAnsurBody diag_body(const std::string& spec) {
+    for (const EvalBody& e : kEvalBodies)
+        if (spec == e.name) return ShapedAnsurBody(e);
+    std::vector<std::string> fields;
+    std::string field;
+    for (const char c : spec + ",") {
+        if (c == ',') fields.push_back(field), field.clear();
+        else field += c;
+    }
+    REQUIRE(fields.size() == 10);
+    body::SemanticRequest request;
+    request.gender = body::parse_gender(fields[0]);
+    const body::Semantic order[] = {body::Semantic::height_m, body::Semantic::weight_kg, body::Semantic::chest_girth_m,
+                                    body::Semantic::waist_girth_m, body::Semantic::hip_girth_m, body::Semantic::thigh_girth_m,
+                                    body::Semantic::calf_girth_m, body::Semantic::shoulder_height_m,
+                                    body::Semantic::crotch_height_m};
+    for (size_t k = 0; k < 9; ++k) request[order[k]] = std::stod(fields[k + 1]);
+    return ShapedAnsurBody(request);
+}
+
 // Diagnostic (hidden): the crossings of a garment of the 60-case table over the drape,
 // every 5 steps, with where they are (panels, centre of the first face). DRAPE_DIAG_BODY
 // (female_p50), DRAPE_DIAG_GARMENT (pants|skirt|tshirt), DRAPE_DIAG_POSE
@@ -696,12 +723,7 @@ TEST_CASE("drape diag: crossings over the drape of one case of the 60-case table
     const drape::cloth::Material material = drape::cloth::builtin_material("gray-interlock");
     const auto env = [](const char* k, const char* d) { const char* v = std::getenv(k); return std::string(v ? v : d); };
     const std::string garment = env("DRAPE_DIAG_GARMENT", "pants"), pose_name = env("DRAPE_DIAG_POSE", "walking");
-    const std::string body_name = env("DRAPE_DIAG_BODY", "female_p50");
-    const EvalBody* eb = nullptr;
-    for (const EvalBody& e : kEvalBodies)
-        if (body_name == e.name) eb = &e;
-    REQUIRE(eb);
-    const ShapedAnsurBody b(*eb);
+    const ShapedAnsurBody b = diag_body(env("DRAPE_DIAG_BODY", "female_p50"));
     const body::BodyModel& model = b.model;
     const body::ShapedBody& shaped = b.shaped;
     const body::NamedPose np = pose_name == "walking" ? body::NamedPose::walking
@@ -797,13 +819,8 @@ TEST_CASE("drape diag: crossings over the drape of one case of the 60-case table
 TEST_CASE("dressing diag: crossings of one dressed state", "[.diag]") {
     const auto env = [](const char* k, const char* d) { const char* v = std::getenv(k); return std::string(v ? v : d); };
     const std::string garment = env("DRAPE_DIAG_GARMENT", "pants"), pose_name = env("DRAPE_DIAG_POSE", "a_pose");
-    const std::string body_name = env("DRAPE_DIAG_BODY", "female_p50");
     const double edge_cm = std::stod(env("DRAPE_DIAG_EDGE", "1.5"));
-    const EvalBody* eb = nullptr;
-    for (const EvalBody& e : kEvalBodies)
-        if (body_name == e.name) eb = &e;
-    REQUIRE(eb);
-    const ShapedAnsurBody b(*eb);
+    const ShapedAnsurBody b = diag_body(env("DRAPE_DIAG_BODY", "female_p50"));
     const body::NamedPose np = pose_name == "walking" ? body::NamedPose::walking
                                : pose_name == "arms_down" ? body::NamedPose::arms_down : body::NamedPose::a_pose;
     const body::Pose pose = clear_arms_from_trunk(b.model, b.shaped, body::named_pose(np));
@@ -955,4 +972,34 @@ TEST_CASE("arms are raised just clear of the trunk, and only where they cross it
     bad = ArmClearanceOptions{};
     bad.max_degrees = 90;
     CHECK_THROWS_AS(clear_arms_from_trunk(model, slim, down, bad), drape::InvalidInput);
+}
+
+// Diagnostic (hidden): how far down the arms the sleeve caps of the proposed t-shirt and
+// dress start in the rest A-pose, on the five evaluation bodies and on the bodies of
+// DRAPE_DIAG_BODIES (semicolon-separated diag_body specs).
+TEST_CASE("dressing diag: sleeve cap offsets", "[.diag]") {
+    std::vector<std::string> specs;
+    for (const EvalBody& e : kEvalBodies) specs.push_back(e.name);
+    if (const char* extra = std::getenv("DRAPE_DIAG_BODIES")) {
+        std::string spec;
+        for (const char c : std::string(extra) + ";") {
+            if (c == ';') specs.push_back(spec), spec.clear();
+            else spec += c;
+        }
+    }
+    for (const std::string& spec : specs) {
+        const ShapedAnsurBody b = diag_body(spec);
+        for (const GarmentType type : {GarmentType::tshirt, GarmentType::dress}) {
+            const Pattern pattern = make_pattern(proposed_sizing(type, b.model, b.shaped, b.m));
+            const GarmentMesh mesh = mesh_at_4cm(pattern);
+            Eigen::MatrixX3d X;
+            const char* raise = std::getenv("DRAPE_DIAG_RAISE");
+            const double deg = raise ? std::atof(raise) : 0.0;
+            const DressingSummary s = dress_garment(pattern, mesh, b.model, b.shaped, raise_arms(body::Pose::rest(), deg, deg),
+                                                    DressingOptions{}, X);
+            std::printf("%s %s: sleeve caps %.0f cm down, seam gap %.1f cm, %d crossings\n", spec.substr(0, 24).c_str(),
+                        garment_type_name(type).c_str(), 100 * s.sleeve_cap_offset_m, 100 * s.max_seam_gap_m,
+                        s.self_intersections);
+        }
+    }
 }

@@ -11,7 +11,10 @@ namespace drape::garment {
 
 struct ArmClearanceOptions {
     double step_degrees = 1.0;  ///< abduction added per trial, (0, 10]
-    double max_degrees = 20.0;  ///< at most this much per arm, [0, 60]
+    /// At most this much per arm, [0, 60]. 20 was enough for the five evaluation bodies;
+    /// the heaviest ANSUR II people need more (a woman of 97 kg: 26-27 deg, a man of 124 kg:
+    /// 28 deg, arms down; at 20 deg 57-60 arm/trunk pairs still crossed).
+    double max_degrees = 45.0;
     bool is_valid(std::string* why = nullptr) const;
 };
 
@@ -24,6 +27,11 @@ struct ArmClearanceSummary {
     bool clear() const { return crossings_after == 0; }
     std::string brief_report() const;
 };
+
+/// `pose` with the right arm raised sideways by `right_degrees` and the left by
+/// `left_degrees` (about each shoulder's parent-frame z, the body's front axis; negative
+/// lowers). \throw drape::InvalidInput on an invalid pose or non-finite angles.
+body::Pose raise_arms(const body::Pose& pose, double right_degrees, double left_degrees);
 
 /// Linear blend skinning lets a thick arm held close to the body pass into the torso at the
 /// armpit (arms down or swinging, on most bodies but the slimmest): a garment vertex caught

@@ -53,6 +53,13 @@ struct DressingSummary {
     double max_penetration_m = 0; ///< dressed state: deepest vertex inside the posed body
     double min_layer_distance_m = 0;  ///< dressed state: see GarmentStateCheck
     UntangleSummary untangle;     ///< the last step (crossings before and after it)
+    /// How far down its arm the lowest sleeve cap starts (m; 0 without sleeves): the nearest
+    /// place, from 4 cm in 1 cm steps, where the whole sleeve lies 6 mm outside the torso
+    /// panels; infinity if none within 15 cm (the cap then starts 15 cm down, partly inside
+    /// them). Sewing drags the cap that far up to its armhole.
+    double sleeve_cap_offset_m = 0;
+    /// dress_for_drape: how far both arms were raised from the rest A-pose to dress (deg).
+    double arms_raised_deg = 0;
     double seconds = 0;
     bool usable() const { return vertices_inside == 0; }
     std::string brief_report() const;
@@ -106,6 +113,28 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
                               const body::BodyModel& model, const body::ShapedBody& shaped,
                               const body::Pose& pose, const DressingOptions& options,
                               Eigen::MatrixX3d& positions);
+
+/// dress_for_drape raises the arms in steps of this much, at most kMaxDressingArmRaiseDeg,
+/// until the dressed seam gap of a garment with sleeves is at most kMaxDressingSeamGapM.
+constexpr double kDressingArmRaiseStepDeg = 5.0;
+constexpr double kMaxDressingArmRaiseDeg = 30.0;
+constexpr double kMaxDressingSeamGapM = 0.12;
+
+/// The dressed state a drape starts from: dress_garment in the rest A-pose, or for a garment
+/// with sleeves whose dressed seam gap there exceeds kMaxDressingSeamGapM, in the rest pose
+/// with both arms raised sideways (raise_arms) by the smallest multiple of
+/// kDressingArmRaiseStepDeg (at most kMaxDressingArmRaiseDeg) that brings it below. The
+/// sleeves are placed where they lie clear of the torso panels, and the simulation sews the
+/// caps to their armholes: on a heavy body whose arms lie against the trunk in the A-pose
+/// they start 14-15 cm down the arm (seam gap 17.7 cm on a woman of 97 kg), and sewing
+/// dragged the cap through the front panel at the armpit (crossings that stayed); with the
+/// arms raised the cap starts nearer its armhole (10 deg: 11.4 cm). Garments without
+/// sleeves are dressed in the rest pose. `dressing_pose` receives the pose dressed in, which
+/// the drape's body path starts from; the summary's arms_raised_deg says how far.
+/// \throw drape::InvalidInput as dress_garment.
+DressingSummary dress_for_drape(const Pattern& pattern, const GarmentMesh& mesh, const body::BodyModel& model,
+                                const body::ShapedBody& shaped, const DressingOptions& options,
+                                Eigen::MatrixX3d& positions, body::Pose& dressing_pose);
 
 /// The posed body vertices (#B x 3, world, metres) at `states` poses evenly spaced from
 /// `from` to `to` (body::interpolate_pose), both included: the path drape_garment moves the
