@@ -13,6 +13,7 @@
 // hip, and as lower below) per frame cell, every photo
 // also counted mirrored (left and right joints swapped), every second pixel in x and y.
 #include "layout_frame.hpp"
+#include "photo_folder.hpp"
 
 #include <drape/vision/image_io.hpp>
 #include <drape/vision/joints.hpp>
@@ -33,22 +34,6 @@ namespace fs = std::filesystem;
 using namespace drape::vision;
 
 namespace {
-
-Joints read_joints(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw std::runtime_error("cannot read " + file.string());
-    const nlohmann::json j = nlohmann::json::parse(in);
-    double shift = -0.5;  // one_based, the default of the folder format
-    if (j.contains("pixel_origin")) {
-        const std::string o = j["pixel_origin"].get<std::string>();
-        shift = o == "zero_based" ? 0.5 : o == "corner" ? 0.0 : -0.5;
-    }
-    Joints out;
-    for (int i = 0; i < kJointCount; ++i)
-        out.px[size_t(i)] = {j["joints"][size_t(i)][0].get<double>() + shift,
-                             j["joints"][size_t(i)][1].get<double>() + shift};
-    return out;
-}
 
 /// The joints of the horizontally mirrored photo: x -> width - x, left and right swapped.
 Joints mirrored(const Joints& j, int width) {
@@ -120,7 +105,7 @@ int main(int argc, char** argv) {
             for (size_t i = 0; i < names.size(); ++i) {
                 if (part == "tune" && i % 2 != 0) continue;
                 const cv::Mat labels = load_label_map(dir / "labels" / (names[i] + ".png"), "labels");
-                const Joints j = read_joints(dir / "joints" / (names[i] + ".json"));
+                const Joints j = drape::tools::read_joints(dir / "joints" / (names[i] + ".json"));
                 count(labels, j, table, counts);
                 cv::Mat flipped;
                 cv::flip(labels, flipped, 1);

@@ -69,6 +69,22 @@ int row_width(const cv::Mat& mask, int y, int* runs) {
     return w;
 }
 
+double mean_row_width(const cv::Mat& mask, double yc, const Joints& j) {
+    const int band = std::max(1, int(std::lround(0.01 * j.body_height_px())));
+    double sum = 0;
+    int n = 0;
+    for (int y = int(yc) - band; y <= int(yc) + band; ++y, ++n) sum += row_width(mask, y);
+    return sum / std::max(1, n);
+}
+
+double upper_thigh_width(const cv::Mat& mask, const Joints& j) {
+    const double hip_y = j.mid_hip().y(), knee_y = j.mid_knee().y();
+    double widest = 0;
+    for (double y = hip_y + 0.2 * (knee_y - hip_y); y <= hip_y + 0.4 * (knee_y - hip_y); y += 1.0)
+        widest = std::max(widest, mean_row_width(mask, y, j));
+    return widest;
+}
+
 double polyline_x_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                      const Eigen::Vector2d& c, double y) {
     auto on = [y](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
@@ -212,18 +228,8 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j, c
     // Width at the knee row over the widest row of the upper thighs (20-40 % of hip -> knee,
     // below where a top hanging over the hips or hands in pockets hide the garment's
     // sides), each width a mean over +-1 % H of rows.
-    const double knee_y = j.mid_knee().y();
-    const int band = std::max(1, int(std::lround(0.01 * H)));
-    auto mean_width = [&](double yc) {
-        double sum = 0;
-        int n = 0;
-        for (int y = int(yc) - band; y <= int(yc) + band; ++y, ++n) sum += row_width(mask, y);
-        return sum / std::max(1, n);
-    };
-    double thigh_width = 0;
-    for (double y = hip_y + 0.2 * (knee_y - hip_y); y <= hip_y + 0.4 * (knee_y - hip_y); y += 1.0)
-        thigh_width = std::max(thigh_width, mean_width(y));
-    c.knee_width_ratio = thigh_width > 0 ? mean_width(knee_y) / thigh_width : 0.0;
+    const double thigh_width = upper_thigh_width(mask, j);
+    c.knee_width_ratio = thigh_width > 0 ? mean_row_width(mask, j.mid_knee().y(), j) / thigh_width : 0.0;
     return c;
 }
 

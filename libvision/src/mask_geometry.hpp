@@ -23,6 +23,13 @@ int row_percentile(const cv::Mat& mask, double q);
 /// Set pixels on row y (0 outside the image) and the number of runs of them.
 int row_width(const cv::Mat& mask, int y, int* runs = nullptr);
 
+/// Mean row width over rows yc +- 1 % of the body height.
+double mean_row_width(const cv::Mat& mask, double yc, const Joints& j);
+
+/// The widest mean row width of the upper thighs (20-40 % of hip -> knee, below where a top
+/// hanging over the hips or hands in pockets hide the garment's sides).
+double upper_thigh_width(const cv::Mat& mask, const Joints& j);
+
 /// x of the point at row y on the polyline a -> b -> c (clamped to its ends).
 double polyline_x_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                      const Eigen::Vector2d& c, double y);

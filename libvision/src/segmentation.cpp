@@ -6,6 +6,7 @@
 
 #include "alpha_expansion.hpp"
 #include "body_layout.hpp"
+#include "garment_type_model.hpp"
 #include "colour_model.hpp"
 #include "superpixels.hpp"
 
@@ -757,6 +758,12 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
         result.garment_types.emplace_back(label_id_of(t), t);
     };
     const cv::Mat mu = result.labels == kUpperTmp, ml = result.labels == kLowerTmp;
+    // The learned decision (garment_type_model.hpp) replaces the colour-similarity rule
+    // when both regions are garments and the model is trained.
+    std::optional<bool> learned_dress;
+    if (!o.hint && cv::countNonZero(mu) >= min_area && cv::countNonZero(ml) >= min_area)
+        learned_dress = detail::learned_is_dress(image, mu, ml, joints);
+    if (learned_dress) dress = *learned_dress;
     if (dress) {
         const cv::Mat both = mu | ml;
         if (cv::countNonZero(both) >= min_area) assign(both, GarmentType::dress);
@@ -770,6 +777,8 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
             }
             const GarmentShapeCues cues = measure_shape_cues(mask, joints, hair_mask);
             GarmentType t = part == GarmentPart::upper ? classify_upper(cues) : classify_lower(cues);
+            if (part == GarmentPart::lower)
+                if (const auto lt = detail::learned_lower_type(image, mask, joints, hair_mask)) t = *lt;
             if (o.hint && part_of(*o.hint) == part) t = *o.hint;
             assign(mask, t);
         }
@@ -777,7 +786,7 @@ SegmentationSummary segment_automatic(const cv::Mat& image, const Joints& joints
     finish(result, o, summary);
     std::ostringstream msg;
     msg << "upper/lower colour similarity " << std::fixed << std::setprecision(2) << similarity
-        << (dress ? " -> dress" : " -> two pieces");
+        << (learned_dress ? ", learned model" : "") << (dress ? " -> dress" : " -> two pieces");
     if (!summary.message.empty()) msg << "; " << summary.message;
     summary.message = msg.str();
     summary.seconds = since(t0);
