@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the tools that read a photo folder in the ../shared/data/photos layout
 // (images/, labels/, joints/): the joints file and the fixed photo split of docs/vision.md.
+#include <drape/vision/photo_split.hpp>
 #include <drape/vision/joints.hpp>
 
 #include <nlohmann/json.hpp>
@@ -31,15 +32,14 @@ inline drape::vision::Joints read_joints(const std::filesystem::path& file) {
 }
 
 /// The photo names (stems of images/*.jpg) sorted ascending; with tuning_only, the
-/// tuning part of the fixed split (0-based even positions).
+/// tuning part of the fixed split (`vision::select_photo_split`, docs/vision.md).
 inline std::vector<std::string> photo_names(const std::filesystem::path& dir, bool tuning_only) {
-    std::vector<std::string> names, out;
+    std::vector<std::string> names;
     for (const auto& e : std::filesystem::directory_iterator(dir / "images"))
         if (e.path().extension() == ".jpg") names.push_back(e.path().stem().string());
     std::sort(names.begin(), names.end());
-    for (size_t i = 0; i < names.size(); ++i)
-        if (!tuning_only || i % 2 == 0) out.push_back(names[i]);
-    return out;
+    return drape::vision::select_photo_split(
+        names, tuning_only ? drape::vision::PhotoSplit::tune : drape::vision::PhotoSplit::all);
 }
 
 }  // namespace drape::tools
