@@ -598,10 +598,11 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
     const double marked = double(cv::countNonZero(strokes != kUnmarked)) / double(strokes.total());
     const double sparse_factor =
         o.sparse_marks_fraction > 0 ? std::clamp(marked / o.sparse_marks_fraction, 0.25, 1.0) : 1.0;
-    const double compact_factor =
-        o.compact_marks_factor < 1
-            ? 1 - compact_mark_share(strokes, o.compact_mark_elongation) * (1 - o.compact_marks_factor)
-            : 1.0;
+    // Clicks (compact marks) say where a region is, not how far it reaches: the distance
+    // weight falls with their share b, and the skeleton prior below rises as much (what
+    // the marks no longer bound, the body does).
+    const double compact = o.compact_marks_factor < 1 ? compact_mark_share(strokes, o.compact_mark_elongation) : 0.0;
+    const double compact_factor = 1 - compact * (1 - o.compact_marks_factor);
     for (size_t k = 0; k < ids.size(); ++k) {
         cv::Mat seed = ((trust.hard == int(k)) | (trust.soft == int(k)));
         if (cv::countNonZero(seed) == 0) seed = marks == int(k);  // every mark dropped: keep them
@@ -623,7 +624,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
         cv::Mat ramp = (d - r0) / std::max(1e-6, r0);
         cv::max(ramp, 0.0, ramp);
         cv::min(ramp, 1.0, ramp);
-        ramp *= o.body_prior_weight;
+        ramp *= o.body_prior_weight / compact_factor;
         for (size_t k = 0; k < ids.size(); ++k)
             if (ids[k] != o.table.background_id()) p.prior[k] += ramp;
     }

@@ -69,7 +69,8 @@ struct SegmentationOptions {
     /// box's longer side squared is below `compact_mark_elongation` x its area; a disk
     /// gives 4/pi, a stroke its length / width) say where a region is, not how far it
     /// reaches. The stroke distance weight is scaled by 1 - b (1 - this), b being the
-    /// share of the marked pixels in such blobs (docs/notes/vision.md, 2026-11-26 b). 1 = off.
+    /// share of the marked pixels in such blobs, and the skeleton prior (body_prior_weight)
+    /// divided by that scale (docs/notes/vision.md, 2026-11-26 b). 1 = off.
     double compact_marks_factor = 0.25;     ///< in (0, 1]
     double compact_mark_elongation = 2.0;   ///< > 0
     double body_reach_fraction = 0.12;      ///< > 0
