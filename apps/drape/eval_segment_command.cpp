@@ -502,7 +502,9 @@ void add_eval_segment_command(CLI::App& app) {
         {"seed-growth-fraction", &o.seed_growth_fraction},
         {"body-prior-weight", &o.body_prior_weight},
         {"body-reach-fraction", &o.body_reach_fraction},
-        {"sparse-marks-fraction", &o.sparse_marks_fraction}};
+        {"sparse-marks-fraction", &o.sparse_marks_fraction},
+        {"compact-marks-factor", &o.compact_marks_factor},
+        {"compact-mark-elongation", &o.compact_mark_elongation}};
     add_tuning_options(*cmd, "SegmentationOptions", tuning);
     // WrinkleOptions members exposed for tuning the fold detector with --scale-check.
     vision::WrinkleOptions& w = args->garment.wrinkles;

@@ -46,6 +46,9 @@ bool SegmentationOptions::is_valid(std::string* why) const {
     if (!(body_prior_weight >= 0)) return fail("body_prior_weight must be >= 0");
     if (!(sparse_marks_fraction >= 0) || sparse_marks_fraction > 1)
         return fail("sparse_marks_fraction must be in [0, 1]");
+    if (!(compact_marks_factor > 0) || compact_marks_factor > 1)
+        return fail("compact_marks_factor must be in (0, 1]");
+    if (!(compact_mark_elongation > 0)) return fail("compact_mark_elongation must be > 0");
     if (!(body_reach_fraction > 0)) return fail("body_reach_fraction must be > 0");
     if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
     if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
@@ -434,6 +437,25 @@ MarkTrust trust_marks(const cv::Mat& small, const cv::Mat& marks, int labels,
     return t;
 }
 
+}  // namespace
+
+double compact_mark_share(const cv::Mat& strokes, double max_elongation) {
+    require(!strokes.empty() && strokes.type() == CV_8UC1,
+            "compact_mark_share: strokes must be an 8-bit single-channel class map");
+    cv::Mat comp, stats, centres;
+    const int n = cv::connectedComponentsWithStats(strokes != kUnmarked, comp, stats, centres, 8, CV_32S);
+    double all = 0, compact = 0;
+    for (int c = 1; c < n; ++c) {
+        const double a = stats.at<int>(c, cv::CC_STAT_AREA);
+        const double side = std::max(stats.at<int>(c, cv::CC_STAT_WIDTH), stats.at<int>(c, cv::CC_STAT_HEIGHT));
+        all += a;
+        if (side * side < max_elongation * a) compact += a;
+    }
+    return all > 0 ? compact / all : 0.0;
+}
+
+namespace {
+
 /// Distance (px) of every pixel of an image of `size` to the skeleton of `j` (joints in
 /// that image's pixels): the legs' chain, the arms' chain through the shoulders, the
 /// torso's sides, the spine (neck to mid-hip) and the neck to the head.
@@ -577,6 +599,11 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
     const double marked = double(cv::countNonZero(strokes != kUnmarked)) / double(strokes.total());
     const double sparse_factor =
         o.sparse_marks_fraction > 0 ? std::clamp(marked / o.sparse_marks_fraction, 0.25, 1.0) : 1.0;
+    // Clicks (compact marks) say where a region is, not how far it reaches: the distance
+    // weight falls with their share b, and the skeleton prior below rises as much (what
+    // the marks no longer bound, the body does).
+    const double compact = o.compact_marks_factor < 1 ? compact_mark_share(strokes, o.compact_mark_elongation) : 0.0;
+    const double compact_factor = 1 - compact * (1 - o.compact_marks_factor);
     for (size_t k = 0; k < ids.size(); ++k) {
         cv::Mat seed = ((trust.hard == int(k)) | (trust.soft == int(k)));
         if (cv::countNonZero(seed) == 0) seed = marks == int(k);  // every mark dropped: keep them
@@ -586,7 +613,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
         const double grow = o.seed_growth_fraction * body_h * s;
         p.model_seed.push_back(grow > 0 ? cv::Mat(d <= float(grow)) : seed);
         const double f = ids[k] == o.table.background_id() ? o.background_distance_factor : 1.0;
-        p.prior.push_back(d * (f * sparse_factor * o.stroke_distance_weight / (body_h * s)));
+        p.prior.push_back(d * (f * sparse_factor * compact_factor * o.stroke_distance_weight / (body_h * s)));
     }
     // The person is where the joints are: every class but the background costs more the
     // farther a pixel lies beyond `body_reach_fraction` of the body height from the
@@ -598,7 +625,7 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
         cv::Mat ramp = (d - r0) / std::max(1e-6, r0);
         cv::max(ramp, 0.0, ramp);
         cv::min(ramp, 1.0, ramp);
-        ramp *= o.body_prior_weight;
+        ramp *= o.body_prior_weight / compact_factor;
         for (size_t k = 0; k < ids.size(); ++k)
             if (ids[k] != o.table.background_id()) p.prior[k] += ramp;
     }

@@ -188,3 +188,26 @@ TEST_CASE("a few clicks: background of a garment's colour far from the person st
     INFO("mean IoU without " << sum_without / 4 << ", with " << sum_with / 4);
     CHECK(sum_with >= sum_without - 4 * 0.01);
 }
+
+TEST_CASE("compact_mark_share: clicks are compact, strokes are not", "[vision][strokes][styles]") {
+    const test::SyntheticFigure f = test::make_figure();
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        INFO("seed " << seed);
+        const double dots = compact_mark_share(simulate_strokes(f.labels, StrokeStyle::dots, seed), 2.0);
+        const double medial = compact_mark_share(simulate_strokes(f.labels, StrokeStyle::medial, seed), 2.0);
+        const double dashes = compact_mark_share(simulate_strokes(f.labels, StrokeStyle::dashes, seed), 2.0);
+        const double sloppy = compact_mark_share(simulate_strokes(f.labels, StrokeStyle::sloppy, seed), 2.0);
+        INFO("dots " << dots << ", medial " << medial << ", dashes " << dashes << ", sloppy " << sloppy);
+        CHECK(dots > 0.8);
+        CHECK(medial < 0.05);
+        CHECK(dashes < 0.1);
+        CHECK(sloppy < 0.1);
+    }
+    // A hand-made map: one 7 x 7 disk-like square (compact) and one 1 x 40 line.
+    cv::Mat s(100, 100, CV_8UC1, cv::Scalar(kUnmarked));
+    s(cv::Rect(10, 10, 7, 7)).setTo(0);
+    s(cv::Rect(30, 50, 40, 1)).setTo(42);
+    CHECK(compact_mark_share(s, 2.0) == Approx(49.0 / 89.0));
+    CHECK(compact_mark_share(cv::Mat(10, 10, CV_8UC1, cv::Scalar(kUnmarked)), 2.0) == 0.0);
+    CHECK_THROWS_AS(compact_mark_share(cv::Mat(), 2.0), InvalidInput);
+}

@@ -65,6 +65,14 @@ struct SegmentationOptions {
     /// Strokes mode: when fewer than this fraction of the pixels are marked, the stroke
     /// distance weight is scaled by (marked fraction / this), down to a quarter. 0 = off.
     double sparse_marks_fraction = 0.01;    ///< in [0, 1]
+    /// Strokes mode: marks drawn as clicks (compact blobs: a connected mark whose bounding
+    /// box's longer side squared is below `compact_mark_elongation` x its area; a disk
+    /// gives 4/pi, a stroke its length / width) say where a region is, not how far it
+    /// reaches. The stroke distance weight is scaled by 1 - b (1 - this), b being the
+    /// share of the marked pixels in such blobs, and the skeleton prior (body_prior_weight)
+    /// divided by that scale (docs/notes/vision.md, 2026-11-26 b). 1 = off.
+    double compact_marks_factor = 0.25;     ///< in (0, 1]
+    double compact_mark_elongation = 2.0;   ///< > 0
     double body_reach_fraction = 0.12;      ///< > 0
     /// Automatic mode: weight of the learned spatial prior, layout_weight x -ln p(label |
     /// body-frame cell) added to each label's colour cost (docs/vision.md, "Segmentation").
@@ -140,6 +148,11 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image_bgr, const cv::Mat
 SegmentationSummary segment_automatic(const cv::Mat& image_bgr, const Joints& joints,
                                       const SegmentationOptions& options,
                                       Segmentation& result);
+
+/// The share of the marked pixels of `strokes` (class ids, 255 = unmarked) that lie in
+/// compact blobs: 8-connected marks whose bounding box's longer side squared is below
+/// `max_elongation` x their area (clicks; a stroke's is its length / width). 0 if no mark.
+double compact_mark_share(const cv::Mat& strokes, double max_elongation);
 
 /// The occlusion mask of a label map (see Segmentation::occlusion).
 cv::Mat occlusion_mask(const cv::Mat& labels, const LabelTable& table);
