@@ -46,6 +46,7 @@ bool WrinkleOptions::is_valid(std::string* why) const {
     if (threads < 0) return fail("threads must be >= 0");
     if (!(min_garment_area_fraction >= 0)) return fail("min_garment_area_fraction must be >= 0");
     if (!(min_fold_count >= 0)) return fail("min_fold_count must be >= 0");
+    if (!(max_step_ratio >= 0)) return fail("max_step_ratio must be >= 0");
     if (!(print_step_threshold > 0)) return fail("print_step_threshold must be > 0");
     if (!(print_chroma_threshold > 0)) return fail("print_chroma_threshold must be > 0");
     if (!(print_edge_sigma_px >= 0.7 && print_edge_sigma_px < 100)) return fail("print_edge_sigma_px must lie in [0.7, 100)");
@@ -254,7 +255,8 @@ GarmentCrop crop_garment(const cv::Mat& image, const cv::Mat& mask, const cv::Ma
 
 /// The folds of one detection from its ridge responses: sets the edge and fold counts of `s`.
 void count_folds(const cv::Mat& resp_bright, const cv::Mat& resp_dark, const cv::Mat& nx_b, const cv::Mat& ny_b,
-                 const cv::Mat& nx_d, const cv::Mat& ny_d, const cv::Mat& valid, double Hw,
+                 const cv::Mat& nx_d, const cv::Mat& ny_d, const cv::Mat& step_b, const cv::Mat& step_d,
+                 const cv::Mat& valid, double Hw,
                  double f, const Vec& offset, const WrinkleOptions& o, WrinkleSummary& s,
                  std::vector<Fold>* folds) {
     const double max_turn = o.max_curvature_fraction * 0.25;  // radians of turn
@@ -264,6 +266,8 @@ void count_folds(const cv::Mat& resp_bright, const cv::Mat& resp_dark, const cv:
         const cv::Mat& r = polarity ? resp_bright : resp_dark;
         const cv::Mat& nx = polarity ? nx_b : nx_d;
         const cv::Mat& ny = polarity ? ny_b : ny_d;
+        const cv::Mat& st = polarity ? step_b : step_d;
+        const bool profile = o.max_step_ratio > 0;
         cv::Mat keep = cv::Mat::zeros(r.size(), CV_8UC1);
         for (int y = 1; y < r.rows - 1; ++y)
             for (int x = 1; x < r.cols - 1; ++x) {
@@ -271,6 +275,9 @@ void count_folds(const cv::Mat& resp_bright, const cv::Mat& resp_dark, const cv:
                 // Hysteresis: pixels down to half the threshold, kept below when their
                 // piece reaches the threshold somewhere.
                 if (v < 0.5 * o.ridge_threshold || !valid.at<std::uint8_t>(y, x)) continue;
+                // Ridge profile: a fold's crest or crease is a luminance extremum across
+                // it; the side of a step (a print edge) has the slope of the step there.
+                if (profile && st.at<float>(y, x) > o.max_step_ratio) continue;
                 const int dx = int(std::lround(nx.at<float>(y, x))), dy = int(std::lround(ny.at<float>(y, x)));
                 if (v >= r.at<float>(y + dy, x + dx) && v >= r.at<float>(y - dy, x - dx))
                     keep.at<std::uint8_t>(y, x) = 1;
@@ -393,7 +400,8 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, c
     const float floor_resp = float(0.5 * o.ridge_threshold);
     cv::Mat resp_bright = cv::Mat::zeros(gray.size(), CV_32F), resp_dark = resp_bright.clone();
     cv::Mat nx_b(gray.size(), CV_32F, cv::Scalar(0)), ny_b = nx_b.clone(), nx_d = nx_b.clone(),
-            ny_d = nx_b.clone();
+            ny_d = nx_b.clone(), step_b = nx_b.clone(), step_d = nx_b.clone();
+    const bool profile = o.max_step_ratio > 0;
     for (double sf : o.scale_fractions) {
         const double sigma = std::max(0.7, sf * Hw);
         // The photo's own blur, in working pixels, is part of sigma: a photo with the body
@@ -406,6 +414,11 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, c
         cv::Sobel(g, dxx, CV_32F, 2, 0, 3);
         cv::Sobel(g, dyy, CV_32F, 0, 2, 3);
         cv::Sobel(g, dxy, CV_32F, 1, 1, 3);
+        cv::Mat gx, gy;
+        if (profile) {
+            cv::Sobel(g, gx, CV_32F, 1, 0, 3);
+            cv::Sobel(g, gy, CV_32F, 0, 1, 3);
+        }
         const float s2 = float(sigma * sigma);
         // Eigenvector of l: (c, l - a) or (l - b, c).
         auto normal = [](float a, float b, float c, float l, float& ex, float& ey) {
@@ -420,6 +433,14 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, c
             float *rbp = resp_bright.ptr<float>(y), *rdp = resp_dark.ptr<float>(y);
             float *nxb = nx_b.ptr<float>(y), *nyb = ny_b.ptr<float>(y), *nxd = nx_d.ptr<float>(y),
                   *nyd = ny_d.ptr<float>(y);
+            const float* pgx = profile ? gx.ptr<float>(y) : nullptr;
+            const float* pgy = profile ? gy.ptr<float>(y) : nullptr;
+            float *sbp = step_b.ptr<float>(y), *sdp = step_d.ptr<float>(y);
+            // Step ratio: sigma |dL/dn| / (sigma^2 |d2L/dn2|) with the Sobel gains (8 and 4)
+            // removed; 0 on a symmetric bump's axis, 1 on the Hessian ridge beside a step.
+            auto step_ratio = [&](int x, float ex, float ey, float r) {
+                return float(sigma) * std::abs(pgx[x] * ex + pgy[x] * ey) / (2.f * r);
+            };
             for (int x = 0; x < g.cols; ++x) {
                 if (!nd[x]) continue;
                 const float a = pa[x], b = pb[x], c = pc[x];
@@ -428,16 +449,22 @@ void detect_at(const GarmentCrop& crop, double H, double Hw, const Vec& phase, c
                 const float rb = s2 * std::max(0.f, -l_min), rd = s2 * std::max(0.f, l_max);
                 if (rb > rbp[x]) {
                     rbp[x] = rb;
-                    if (rb >= floor_resp) normal(a, b, c, l_min, nxb[x], nyb[x]);
+                    if (rb >= floor_resp) {
+                        normal(a, b, c, l_min, nxb[x], nyb[x]);
+                        if (profile) sbp[x] = step_ratio(x, nxb[x], nyb[x], rb);
+                    }
                 }
                 if (rd > rdp[x]) {
                     rdp[x] = rd;
-                    if (rd >= floor_resp) normal(a, b, c, l_max, nxd[x], nyd[x]);
+                    if (rd >= floor_resp) {
+                        normal(a, b, c, l_max, nxd[x], nyd[x]);
+                        if (profile) sdp[x] = step_ratio(x, nxd[x], nyd[x], rd);
+                    }
                 }
             }
         }
     }
-    count_folds(resp_bright, resp_dark, nx_b, ny_b, nx_d, ny_d, valid, Hw, f, offset, o, s, folds);
+    count_folds(resp_bright, resp_dark, nx_b, ny_b, nx_d, ny_d, step_b, step_d, valid, Hw, f, offset, o, s, folds);
 }
 
 }  // namespace

@@ -65,6 +65,12 @@ struct WrinkleOptions {
     /// squared: the default, 0.01 = full_fold_fraction^2, is the square of one full-length
     /// fold; a smaller patch cannot hold one.
     double min_garment_area_fraction = 0.01;  ///< >= 0
+    /// Ridge-profile test (issue 20, folds not prints): a ridge or valley pixel is dropped
+    /// when the luminance slope across it, relative to its curvature, sigma |dL/dn| /
+    /// (sigma^2 |d2L/dn2|) at its scale, exceeds this. It is 0 on the axis of a symmetric
+    /// bump or groove (a fold's crest, a crease) and 1 on the Hessian ridges beside an
+    /// ideal step (a print edge). 0 = off.
+    double max_step_ratio = 0;  ///< >= 0
     /// Folds, not prints (issue 20; docs/vision.md, "Wrinkle density", "Prints"): when true
     /// the detector runs on the garment's shading, its luminance with the steps of its
     /// print removed on the working grid (a Retinex-style intrinsic decomposition: the
