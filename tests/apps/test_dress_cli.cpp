@@ -93,7 +93,7 @@ TEST_CASE("drape eval-dress --docs replaces the table block of a Markdown file",
     CHECK(text.find("old table") == std::string::npos);
     CHECK(text.rfind("# Dressing\n\nbefore\n<!-- drape eval-dress: table begin -->\n| garment | body | pose", 0) == 0);
     CHECK(text.find("| skirt | female_p50 | a_pose |") != std::string::npos);  // (renders: the median woman)
-    CHECK(text.find("1 cases usable;") != std::string::npos);
+    CHECK(text.find("1 of 1 cases usable (100.0 %);") != std::string::npos);
     CHECK(text.find(".\n<!-- drape eval-dress: table end -->\nafter\n") != std::string::npos);
     CHECK(std::filesystem::file_size(docs.parent_path() / "images" / "dress_eval.jpg") > 1000);
     // A file without the markers is rejected before anything is simulated, and kept.
