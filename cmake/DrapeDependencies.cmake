@@ -22,6 +22,7 @@ find_package(DrapeOpenCV REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(TBB REQUIRED)          # libcloth: parallel assembly
+find_package(Pagmo REQUIRED)        # libgarment: particle swarm search of the sizing (pagmo2)
 find_package(CGAL 5.5 REQUIRED)     # libgarment: pattern triangulation (header-only + GMP/MPFR)
 find_package(embree 3 REQUIRED)     # app layer: ray-traced renders
 if(DRAPE_BUILD_TESTS)

@@ -17,6 +17,7 @@ packages=(
   nlohmann-json3-dev     # JSON in the app layer
   libcli11-dev           # command line
   libtbb-dev             # parallel loops (cloth assembly)
+  libpagmo-dev           # particle swarm search of the garment sizing (recovery)
   libcgal-dev            # pattern triangulation (garments)
   libembree-dev          # ray-traced renders (app layer)
   catch2                 # tests
