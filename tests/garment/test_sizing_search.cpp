@@ -184,3 +184,25 @@ TEST_CASE("the silhouette distance measures outline offsets over the visible bou
     bad.cap_px = 0;
     CHECK_THROWS_WITH(SilhouetteScorer(t, bad), Catch::Contains("cap_px"));
 }
+
+#include <drape/garment/material_search.hpp>
+
+TEST_CASE("the bending search finds the scale whose curvature matches the target", "[sizing_search]") {
+    // A monotone curvature law like a drape's: stiffer cloth, fewer and wider folds.
+    const auto k = [](double x) { return 8.0 * std::pow(10.0, -0.35 * x) + 1.0; };
+    MaterialSearchOptions o;
+    for (const double truth : {0.3, 1.0, 1.7}) {
+        const auto s = search_bending(k(truth), k, o);
+        CHECK(s.termination == MaterialSearchTermination::converged);
+        CHECK(std::abs(s.mean_curvature_per_m - k(truth)) <= 0.01 * k(truth));
+        CHECK(std::abs(s.log10_bending_scale - truth) < 0.06);
+        CHECK(s.evaluations <= 20);  // each is a static drape: the search must stay cheap
+    }
+    // A target beyond the stiffest: the search stops at the bound.
+    const auto b = search_bending(k(2.0) * 0.5, k, o);
+    CHECK(b.termination == MaterialSearchTermination::at_bound);
+    CHECK(b.log10_bending_scale > 1.9);
+    CHECK_THROWS_WITH(search_bending(-1.0, k, o), Catch::Contains("target mean curvature"));
+    o.max_iterations = 0;
+    CHECK_THROWS_WITH(search_bending(1.0, k, o), Catch::Contains("max_iterations"));
+}
