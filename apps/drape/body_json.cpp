@@ -111,4 +111,19 @@ nlohmann::json to_json(const body::Pose& pose) {
     return j;
 }
 
+nlohmann::json to_json(const body::Camera& c) {
+    nlohmann::json j;
+    if (c.model == body::CameraModel::weak_perspective) {
+        j["model"] = "weak_perspective";
+        j["scale_px_per_m"] = c.scale_px_per_m;
+    } else {
+        j["model"] = "pinhole";
+        j["focal_px"] = c.focal_px;
+        j["distance_m"] = c.distance_m;
+    }
+    j["offset_px"] = {c.offset_px.x(), c.offset_px.y()};
+    j["pixel_frame"] = "origin at the top-left corner of the image, pixel centres at +0.5";
+    return j;
+}
+
 }  // namespace drape::app

@@ -5,6 +5,7 @@
 #include <drape/body/pose.hpp>
 #include <drape/body/semantic_shape.hpp>
 
+#include <drape/body/camera.hpp>
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -22,5 +23,9 @@ nlohmann::json to_json(const body::BodyMeasurements& m, body::Gender gender);
 ///             "rotations": {"<joint name>": [x, y, z] axis-angle radians, ...} (optional)}
 body::Pose pose_from_json(const nlohmann::json& j, const std::string& file);
 nlohmann::json to_json(const body::Pose& pose);
+
+/// The `drape fit-body` camera object (weak perspective or pinhole, principal point, pixel
+/// frame); saved alone it is a `drape render --camera FILE` camera.
+nlohmann::json to_json(const body::Camera& camera);
 
 }  // namespace drape::app

@@ -46,21 +46,6 @@ void require_size(const body::Mask& m, const cv::Mat& photo, const std::string& 
                            std::to_string(photo.cols) + " x " + std::to_string(photo.rows));
 }
 
-nlohmann::json camera_json(const body::Camera& c) {
-    nlohmann::json j;
-    if (c.model == body::CameraModel::weak_perspective) {
-        j["model"] = "weak_perspective";
-        j["scale_px_per_m"] = c.scale_px_per_m;
-    } else {
-        j["model"] = "pinhole";
-        j["focal_px"] = c.focal_px;
-        j["distance_m"] = c.distance_m;
-    }
-    j["offset_px"] = {c.offset_px.x(), c.offset_px.y()};
-    j["pixel_frame"] = "origin at the top-left corner of the image, pixel centres at +0.5";
-    return j;
-}
-
 const char* termination_name(body::Termination t) {
     switch (t) {
         case body::Termination::converged: return "converged";
@@ -134,7 +119,7 @@ void run_fit_body(const FitArgs& args) {
     j["coefficients"] = std::vector<double>(fit.coefficients.data(),
                                             fit.coefficients.data() + fit.coefficients.size());
     j["coefficient_names"] = model.shape_names;
-    j["camera"] = camera_json(fit.camera);
+    j["camera"] = to_json(fit.camera);
     const double shift = origin_offset(joints.origin);
     nlohmann::json pts = nlohmann::json::array();
     for (int i = 0; i < body::kImageJointCount; ++i)

@@ -82,4 +82,24 @@ std::vector<GarmentType> outfit_from_spec(const std::string& spec) {
     }
 }
 
+namespace {
+
+template <class Table>
+nlohmann::json table_json(const Table& t) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& row : t) j.push_back(std::vector<double>(row.begin(), row.end()));
+    return j;
+}
+
+}  // namespace
+
+nlohmann::json material_to_json(const cloth::Material& m, const std::string& base_fabric) {
+    return {{"bending_scale", m.bending_scale},
+            {"stretching_scale", m.stretching_scale},
+            {"base_fabric", base_fabric},
+            {"stretching", table_json(m.stretching_n_per_m)},
+            {"bending", table_json(m.bending_n_m)},
+            {"density", m.density_kg_per_m2}};
+}
+
 }  // namespace drape::app

@@ -11,6 +11,7 @@
 #include <drape/garment/pattern.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 
+#include <drape/cloth/material.hpp>
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -33,6 +34,10 @@ using garment::proposed_sizing;
 /// pattern is made).
 GarmentSizing sizing_from_json(GarmentType type, const nlohmann::json& j, const std::string& file);
 nlohmann::json to_json(const GarmentSizing& sizing);
+
+/// A garment's fabric as truth.json and result.json hold it: the scales, the base fabric's
+/// name, its unscaled tables (SI, ArcSim layout) and density.
+nlohmann::json material_to_json(const cloth::Material& material, const std::string& base_fabric);
 
 /// The garments of `--garment` ("skirt", "tshirt+pants", ...: template names joined by '+')
 /// in layering order, inner first (garment::outfit_layers).

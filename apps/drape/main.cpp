@@ -1,5 +1,6 @@
 // drape: command-line front end of the Drape libraries.
 #include "commands.hpp"
+#include "interrupt.hpp"
 
 #include <drape/core/errors.hpp>
 
@@ -23,10 +24,14 @@ int main(int argc, char** argv) {
     drape::app::add_dress_command(app);
     drape::app::add_eval_dress_command(app);
     drape::app::add_synth_command(app);
+    drape::app::add_recover_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    } catch (const drape::app::CommandExit& e) {
+        if (!e.message.empty()) std::cerr << "drape: " << e.message << "\n";
+        return e.code;
     } catch (const drape::InvalidInput& e) {
         std::cerr << "drape: invalid input: " << e.what() << "\n";
         return 2;

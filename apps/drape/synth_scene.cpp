@@ -39,30 +39,6 @@ std::optional<render::PrintKind> print_of(const std::string& name) {
     throw InvalidInput("--print '" + name + "' is not none, stripes, checks, dots or sampled");
 }
 
-nlohmann::json camera_to_json(const body::Camera& c) {  // the `drape fit-body` camera object
-    return {{"model", "pinhole"},
-            {"focal_px", c.focal_px},
-            {"distance_m", c.distance_m},
-            {"offset_px", {c.offset_px.x(), c.offset_px.y()}},
-            {"pixel_frame", "origin at the top-left corner of the image, pixel centres at +0.5"}};
-}
-
-template <class Table>
-nlohmann::json table_json(const Table& t) {
-    nlohmann::json j = nlohmann::json::array();
-    for (const auto& row : t) j.push_back(std::vector<double>(row.begin(), row.end()));
-    return j;
-}
-
-nlohmann::json material_json(const synth::SynthGarment& g) {
-    return {{"bending_scale", g.material.bending_scale},
-            {"stretching_scale", g.material.stretching_scale},
-            {"base_fabric", g.base_fabric},
-            {"stretching", table_json(g.material.stretching_n_per_m)},
-            {"bending", table_json(g.material.bending_n_m)},
-            {"density", g.material.density_kg_per_m2}};
-}
-
 // Library messages carry wall times ("4017.18 ms (assembly ...)", "0.25 s"); scene files
 // must not, so that they are the same bytes for a seed.
 std::string without_timings(const std::string& message) {
@@ -103,13 +79,13 @@ void write_scene_files(const fs::path& dir, const synth::SynthScene& scene, cons
         const synth::SynthGarment& g = scene.garments[i];
         truth_garments.push_back({{"type", garment::garment_type_name(g.sizing.type)},
                                   {"sizing", to_json(g.sizing)},
-                                  {"material", material_json(g)},
+                                  {"material", material_to_json(g.material, g.base_fabric)},
                                   {"mean_curvature_per_m", r.mean_curvature_per_m[i]},
                                   {"wrinkle_density_per_m2", r.wrinkles[i].summary.density_per_m2}});
     }
     write_json_file(dir / "truth.json",
                     {{"body", {{"params", to_json(scene.shape)}, {"pose", to_json(truth_pose)},
-                               {"camera", camera_to_json(scene.camera)}}},
+                               {"camera", to_json(scene.camera)}}},
                      {"garments", truth_garments}});
 
     const garment::DrapeSummary& d = r.drape.summary.drape;

@@ -1,0 +1,53 @@
+// The accuracy measures of recovery, exactly as issue 21 and the paper define them (section
+// 7, Tables 1-2), so that figures compare with the paper's: sizing, material and curvature
+// accuracy on synthetic scenes, and the mask IoU per garment group on photos.
+#pragma once
+
+#include <drape/cloth/material.hpp>
+#include <drape/garment/garment_sizing.hpp>
+
+#include <opencv2/core.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace drape::recover {
+
+/// The relative accuracy of one value: max(0, 1 − |est − gt| / |gt|); 1 when both are 0,
+/// 0 when only gt is 0.
+double relative_accuracy(double est, double gt);
+
+/// Mean relative_accuracy over the template's G parameters (a dress: both groups).
+/// \throw drape::InvalidInput if the types differ.
+double sizing_accuracy(const garment::GarmentSizing& est, const garment::GarmentSizing& gt);
+
+/// Mean relative_accuracy over the 15 bending and 24 stretching entries of the simulated
+/// material (each table times its scale).
+double material_accuracy(const cloth::Material& est, const cloth::Material& gt);
+
+/// |log10(est.bending_scale / gt.bending_scale)|.
+double bending_log_error(const cloth::Material& est, const cloth::Material& gt);
+
+/// max(0, 1 − |K_est − K_gt| / K_gt).
+double curvature_accuracy(double k_est, double k_gt);
+
+/// The garment groups of the photo evaluation (labels.txt ids).
+enum class GarmentGroup { upper, lower, dress };
+/// upper = blouse, bodysuit, shirt, sweater, sweatshirt, t-shirt, top (5 6 38 48 49 51 54);
+/// lower = jeans, leggings, pants, shorts, skirt (25 27 31 40 42); dress = 14.
+const std::vector<int>& group_ids(GarmentGroup g);
+std::string group_name(GarmentGroup g);
+
+struct GroupIou {
+    GarmentGroup group = GarmentGroup::upper;
+    bool counted = false;     ///< the group covers >= 1 % of the photo in the hand labels
+    double iou = 0;           ///< of the predicted and labelled group pixels
+    double truth_fraction = 0;
+};
+
+/// Per group, the IoU of a predicted label map (mask.png) against the hand labels.
+/// \throw drape::InvalidInput if the sizes or types (CV_8UC1) differ.
+std::array<GroupIou, 3> group_ious(const cv::Mat& predicted, const cv::Mat& truth);
+
+}  // namespace drape::recover

@@ -1,0 +1,124 @@
+#include "initial_sizing.hpp"
+
+#include <drape/garment/sizing_proposal.hpp>
+#include <drape/garment/sizing_search.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace drape::recover {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A feature in centimetres (the fitted stature times its share of the skeleton's body
+// height), or NaN.
+double feature_cm(double px, double body_height_px, double stature_m) {
+    if (!std::isfinite(px) || px <= 0 || !(body_height_px > 0)) return std::nan("");
+    return 100.0 * stature_m * px / body_height_px;
+}
+
+void set_if(double& field, double value) {
+    if (std::isfinite(value)) field = value;
+}
+
+// Clamps every value to the template's range.
+garment::GarmentSizing clamped(garment::GarmentSizing g) {
+    const auto p = garment::sizing_parameters(g.type);
+    auto v = garment::sizing_values(g);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = std::clamp(v[i], p[i].min, p[i].max);
+    return garment::with_sizing_values(g, v);
+}
+
+// A circle skirt's flare from the hem width seen from the front: the hem's girth is about
+// pi times its projected width, and the two panels' hem arcs make it, 2 (r1 + r2) alpha.
+double skirt_flare_deg(double hem_width_cm, double r1, double r2) {
+    if (!std::isfinite(hem_width_cm)) return std::nan("");
+    return std::clamp(kPi * hem_width_cm / (2.0 * (r1 + r2)) * 180.0 / kPi, 20.0, 170.0);
+}
+
+void top_from_features(garment::TShirtSizing& t, GarmentChoice choice, const vision::GarmentFeatures& f, double h,
+                       double stature) {
+    const double length = feature_cm(f.length_px, h, stature);
+    if (std::isfinite(length)) {
+        // The image length runs from the shoulder line to the hem; h2 from the neck point.
+        const double h2 = length + 2.0;
+        t.h1 = std::max(8.0, t.h1 + (h2 - t.h2));
+        t.h2 = h2;
+    }
+    switch (choice) {
+        case GarmentChoice::tank: t.l1 = 0; break;
+        case GarmentChoice::longsleeve: {
+            const double s = feature_cm(f.sleeve_length_px, h, stature);
+            t.l1 = std::isfinite(s) ? std::max(40.0, s) : 58.0;
+            break;
+        }
+        default: {
+            const double s = feature_cm(f.sleeve_length_px, h, stature);
+            if (std::isfinite(s)) t.l1 = std::clamp(s, 8.0, 40.0);
+            break;
+        }
+    }
+}
+
+}  // namespace
+
+garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::GarmentFeatures& f,
+                                      const vision::Joints& joints, const body::BodyModel& model,
+                                      const body::ShapedBody& shaped, const body::BodyMeasurements& measured) {
+    garment::GarmentSizing g = garment::proposed_sizing(template_of(choice), model, shaped, measured);
+    const double h = joints.body_height_px();
+    const double stature = measured.height_m;
+    switch (g.type) {
+        case garment::GarmentType::skirt: {
+            set_if(g.skirt.r2, feature_cm(f.length_px, h, stature));
+            set_if(g.skirt.alpha, skirt_flare_deg(feature_cm(f.hem_width_px, h, stature), g.skirt.r1, g.skirt.r2));
+            break;
+        }
+        case garment::GarmentType::pants: {
+            const double length = feature_cm(f.length_px, h, stature);
+            if (choice == GarmentChoice::shorts) {
+                g.pants.h1 = std::isfinite(length) ? std::min(length, 60.0) : 45.0;
+            } else {
+                set_if(g.pants.h1, length);
+            }
+            break;
+        }
+        case garment::GarmentType::tshirt: top_from_features(g.tshirt, choice, f, h, stature); break;
+        case garment::GarmentType::dress: {
+            top_from_features(g.dress.bodice, choice == GarmentChoice::dress ? GarmentChoice::tshirt : choice, f, h,
+                              stature);
+            const double skirt_length = feature_cm(f.length_from_waist_px, h, stature);
+            if (std::isfinite(skirt_length)) g.dress.skirt.r2 = skirt_length;
+            set_if(g.dress.skirt.alpha, skirt_flare_deg(feature_cm(f.hem_width_px, h, stature), g.dress.skirt.r1,
+                                                        g.dress.skirt.r2));
+            // The bodice ends at the waist: its length is the garment's less the skirt's.
+            if (std::isfinite(skirt_length) && std::isfinite(feature_cm(f.length_px, h, stature))) {
+                const double bodice = feature_cm(f.length_px, h, stature) - skirt_length + 2.0;
+                g.dress.bodice.h1 = std::max(8.0, g.dress.bodice.h1 + (bodice - g.dress.bodice.h2));
+                g.dress.bodice.h2 = bodice;
+            }
+            break;
+        }
+    }
+    g = garment::tie_dress_waist(clamped(g));
+    // A top's sleeve must still fit the arm after the length changed.
+    return clamped(garment::fit_top_to_body(g, model, shaped));
+}
+
+std::vector<bool> free_parameters(GarmentChoice choice) {
+    const auto params = garment::sizing_parameters(template_of(choice));
+    std::vector<bool> free(params.size(), true);
+    for (size_t i = 0; i < params.size(); ++i) {
+        const std::string& n = params[i].name;
+        const bool pants = template_of(choice) == garment::GarmentType::pants;
+        if (n == "r1" || n == "skirt.r1" || n == "r" || n == "bodice.r") free[i] = false;
+        if (pants && (n == "h2" || n == "h3")) free[i] = false;
+        if (choice == GarmentChoice::tank && n == "l1") free[i] = false;
+        if (n == "skirt.l1") free[i] = false;
+    }
+    return free;
+}
+
+}  // namespace drape::recover

@@ -1,0 +1,30 @@
+// Private to librecover: the starting sizing G of a garment from the image features and the
+// fitted body, which parameters the sizing search moves, and the material search's target.
+#pragma once
+
+#include <drape/body/body_model.hpp>
+#include <drape/body/measurements.hpp>
+#include <drape/garment/garment_sizing.hpp>
+#include <drape/recover/recover.hpp>
+#include <drape/vision/garment_features.hpp>
+#include <drape/vision/joints.hpp>
+
+#include <vector>
+
+namespace drape::recover {
+
+/// The template's proposal for the fitted body (sizing_proposal.hpp: girths + ease, a top
+/// fitted to the arms and neck), with the lengths and the flare the photo shows: image
+/// features (pixels / the skeleton's body height) times the fitted stature. Features that
+/// were not measured (NaN) leave the proposal's value; every value is clamped to the
+/// template's range. Shorts get a short leg, a tank no sleeve, a long-sleeve top long ones.
+garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::GarmentFeatures& features,
+                                      const vision::Joints& joints, const body::BodyModel& model,
+                                      const body::ShapedBody& shaped, const body::BodyMeasurements& measured);
+
+/// The parameters the sizing search moves (sizing_parameters order): those the silhouette
+/// shows. Fixed: a skirt's waist radius r1, a top's neckline r, pants' crotch depths h2 and
+/// h3, a tank's sleeve length (0), a dress's skirt waist (tied to the bodice).
+std::vector<bool> free_parameters(GarmentChoice choice);
+
+}  // namespace drape::recover

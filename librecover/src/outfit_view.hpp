@@ -1,0 +1,52 @@
+// Private to librecover: the garment targets from the segmentation, and candidate drapes as
+// the fitted camera sees them (librender's z-buffer rasteriser).
+#pragma once
+
+#include "candidate_draper.hpp"
+
+#include <drape/body/body_model.hpp>
+#include <drape/body/camera.hpp>
+#include <drape/garment/garment_mesh.hpp>
+#include <drape/garment/silhouette_distance.hpp>
+#include <drape/render/scene.hpp>
+#include <drape/vision/label_table.hpp>
+#include <drape/vision/segmentation.hpp>
+
+#include <opencv2/core.hpp>
+
+#include <vector>
+
+namespace drape::recover {
+
+/// The garment `label_id` as the photo shows it; its occluders are the segmentation's
+/// occlusion band, hair, occluder classes (bags, belts, outerwear) and the garments layered
+/// over it (`in_front`, e.g. a top's hem over the waistband of the pants).
+garment::SilhouetteTarget silhouette_target(const vision::Segmentation& seg, const vision::LabelTable& table,
+                                            int label_id, const std::vector<int>& in_front);
+
+struct OutfitRaster {
+    cv::Mat labels;                                          ///< CV_8UC1 class ids
+    std::vector<garment::CandidateSilhouette> silhouettes;   ///< per garment
+};
+
+class OutfitView {
+  public:
+    OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body_vertices, const body::Camera& camera,
+               int width, int height);
+
+    /// Candidate `c` of garment `index` with the body and the other garments in front or behind.
+    garment::CandidateSilhouette candidate(const CandidateDraper& draper, int index, const DrapedCandidate& c,
+                                           int worker) const;
+
+    /// The body (label `body_label`) and the garments, each with its label.
+    OutfitRaster project(const std::vector<const garment::GarmentMesh*>& meshes,
+                         const std::vector<const Eigen::MatrixX3d*>& positions, const std::vector<int>& labels,
+                         int body_label) const;
+
+  private:
+    render::Mesh body_;
+    body::Camera camera_;
+    int width_, height_;
+};
+
+}  // namespace drape::recover
