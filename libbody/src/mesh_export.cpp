@@ -1,12 +1,13 @@
-// export_glb / export_obj / import_mesh. glTF goes through assimp's "glb2" exporter from an
-// aiScene built here; OBJ is written directly (exact round trip of doubles).
+// export_glb / export_obj / import_mesh. glTF is written by drape::gltf (write_glb) from the
+// scene built here; OBJ is written directly (exact round trip of doubles); import_mesh reads
+// any format through assimp.
 #include <drape/body/model_io.hpp>
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
 #include <drape/core/vertex_normals.hpp>
+#include <drape/gltf/glb_writer.hpp>
 
-#include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -46,18 +47,6 @@ Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
     return core::vertex_normals(V, F, options);
 }
 
-aiMatrix4x4 to_ai(const Eigen::Isometry3d& T) {
-    const Eigen::Matrix4d M = T.matrix();
-    aiMatrix4x4 m;  // aiMatrix4x4 is row-major: a1..a4 is the first row
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) m[static_cast<unsigned>(r)][static_cast<unsigned>(c)] = static_cast<ai_real>(M(r, c));
-    return m;
-}
-
-aiVector3D to_ai(const Eigen::RowVector3d& p) {
-    return aiVector3D(static_cast<ai_real>(p[0]), static_cast<ai_real>(p[1]), static_cast<ai_real>(p[2]));
-}
-
 /// Per vertex, the (at most) 4 largest skin weights, renormalised to sum to 1.
 std::vector<std::vector<std::pair<int, double>>> top4_weights(const Eigen::SparseMatrix<double>& W) {
     const Eigen::SparseMatrix<double, Eigen::RowMajor> R = W;
@@ -91,90 +80,34 @@ std::array<Eigen::Isometry3d, kJointCount> local_transforms(const PosedSkeleton&
     return local;
 }
 
-std::unique_ptr<aiScene> build_scene(const BodyModel& model, const ShapedBody& shaped,
-                                     const Pose& pose) {
-    const Eigen::MatrixXd& V = shaped.vertices;
-    const Eigen::MatrixXi& F = model.faces;
+/// The rigged body as a glTF scene: root "drape_body" holding the mesh node "body_mesh"
+/// (rest vertices, skinned) and the skeleton (joint nodes posed by their local transforms).
+gltf::GlbScene build_scene(const BodyModel& model, const ShapedBody& shaped, const Pose& pose) {
     const PosedSkeleton sk = forward_kinematics(shaped.joints, pose);
     const auto local = local_transforms(sk);
-    const auto weights = top4_weights(model.skin_weights);
-    const Eigen::MatrixXd N = vertex_normals(V, F);
-
-    auto scene = std::make_unique<aiScene>();
-    scene->mNumMaterials = 1;
-    scene->mMaterials = new aiMaterial*[1];
-    scene->mMaterials[0] = new aiMaterial();
-    const aiString material_name("body");
-    scene->mMaterials[0]->AddProperty(&material_name, AI_MATKEY_NAME);
-
-    scene->mNumMeshes = 1;
-    scene->mMeshes = new aiMesh*[1];
-    aiMesh* mesh = new aiMesh();
-    scene->mMeshes[0] = mesh;
-    mesh->mName = aiString(model.name.empty() ? std::string("body") : model.name);
-    mesh->mMaterialIndex = 0;
-    mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-    mesh->mNumVertices = static_cast<unsigned>(V.rows());
-    mesh->mVertices = new aiVector3D[mesh->mNumVertices];
-    mesh->mNormals = new aiVector3D[mesh->mNumVertices];
-    for (Eigen::Index v = 0; v < V.rows(); ++v) {
-        mesh->mVertices[v] = to_ai(V.row(v));
-        mesh->mNormals[v] = to_ai(N.row(v));
-    }
-    mesh->mNumFaces = static_cast<unsigned>(F.rows());
-    mesh->mFaces = new aiFace[mesh->mNumFaces];
-    for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        aiFace& face = mesh->mFaces[f];
-        face.mNumIndices = 3;
-        face.mIndices = new unsigned[3];
-        for (int k = 0; k < 3; ++k) face.mIndices[k] = static_cast<unsigned>(F(f, k));
-    }
-
-    // Bones: joint frames are axis-aligned at rest, so the inverse bind matrix of joint j
-    // is a pure translation by -rest_j.
-    std::array<std::vector<aiVertexWeight>, kJointCount> bone_weights;
-    for (std::size_t v = 0; v < weights.size(); ++v)
-        for (const auto& [j, w] : weights[v])
-            bone_weights[static_cast<std::size_t>(j)].emplace_back(static_cast<unsigned>(v), static_cast<ai_real>(w));
-    mesh->mNumBones = kJointCount;
-    mesh->mBones = new aiBone*[kJointCount];
+    gltf::GlbScene scene;
+    scene.root_name = "drape_body";
+    gltf::GlbMesh mesh;
+    mesh.mesh_name = model.name.empty() ? std::string("body") : model.name;
+    mesh.node_name = "body_mesh";
+    mesh.material_name = "body";
+    mesh.V = shaped.vertices;
+    mesh.F = model.faces;
+    mesh.N = vertex_normals(mesh.V, mesh.F);
+    mesh.skin = top4_weights(model.skin_weights);
+    scene.meshes.push_back(std::move(mesh));
+    // Joint frames are axis-aligned at rest, so the inverse bind matrix of joint j is a
+    // pure translation by -rest_j.
+    gltf::GlbSkeleton& skeleton = scene.skeleton;
     for (int j = 0; j < kJointCount; ++j) {
-        aiBone* bone = new aiBone();
-        mesh->mBones[j] = bone;
-        bone->mName = aiString(std::string(kJointNames[static_cast<std::size_t>(j)]));
+        const auto k = static_cast<std::size_t>(j);
+        skeleton.names.emplace_back(kJointNames[k]);
+        skeleton.parents.push_back(kJointParents[k]);
+        skeleton.local.push_back(local[k]);
         Eigen::Isometry3d inverse_bind = Eigen::Isometry3d::Identity();
         inverse_bind.translation() = -shaped.joints.row(j).transpose();
-        bone->mOffsetMatrix = to_ai(inverse_bind);
-        const auto& bw = bone_weights[static_cast<std::size_t>(j)];
-        bone->mNumWeights = static_cast<unsigned>(bw.size());
-        if (!bw.empty()) {
-            bone->mWeights = new aiVertexWeight[bw.size()];
-            std::copy(bw.begin(), bw.end(), bone->mWeights);
-        }
+        skeleton.inverse_bind.push_back(inverse_bind);
     }
-
-    // Nodes: root "drape_body" holds the mesh node and the skeleton.
-    aiNode* root = new aiNode("drape_body");
-    scene->mRootNode = root;
-    std::array<aiNode*, kJointCount> joint_nodes{};
-    for (int j = 0; j < kJointCount; ++j) {
-        joint_nodes[static_cast<std::size_t>(j)] = new aiNode(std::string(kJointNames[static_cast<std::size_t>(j)]));
-        joint_nodes[static_cast<std::size_t>(j)]->mTransformation = to_ai(local[static_cast<std::size_t>(j)]);
-    }
-    std::array<std::vector<aiNode*>, kJointCount> children;
-    for (int j = 1; j < kJointCount; ++j)
-        children[static_cast<std::size_t>(kJointParents[static_cast<std::size_t>(j)])].push_back(
-            joint_nodes[static_cast<std::size_t>(j)]);
-    for (int j = 0; j < kJointCount; ++j) {
-        auto& c = children[static_cast<std::size_t>(j)];
-        if (c.empty()) continue;
-        joint_nodes[static_cast<std::size_t>(j)]->addChildren(static_cast<unsigned>(c.size()), c.data());
-    }
-    aiNode* mesh_node = new aiNode("body_mesh");
-    mesh_node->mNumMeshes = 1;
-    mesh_node->mMeshes = new unsigned[1]{0};
-    std::array<aiNode*, 2> top = {mesh_node, joint_nodes[0]};
-    root->addChildren(2, top.data());
     return scene;
 }
 
@@ -191,12 +124,7 @@ void export_glb(const std::filesystem::path& path, const BodyModel& model,
             model.skin_weights.cols(), ", expected #V x 22");
     require(shaped.joints.allFinite(), "export_glb: shaped.joints has non-finite values");
     check_triangle_mesh("export_glb", shaped.vertices, model.faces);
-    std::unique_ptr<aiScene> scene = build_scene(model, shaped, pose);
-    write_atomically(path, [&](const std::filesystem::path& tmp) {
-        Assimp::Exporter exporter;
-        if (exporter.Export(scene.get(), "glb2", tmp.string()) != aiReturn_SUCCESS)
-            throw IoError("cannot write '" + path.string() + "': " + exporter.GetErrorString());
-    });
+    gltf::write_glb(path, build_scene(model, shaped, pose));
 }
 
 void export_obj(const std::filesystem::path& path, const Eigen::MatrixXd& V,

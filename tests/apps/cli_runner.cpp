@@ -1,22 +1,9 @@
 #include "cli_runner.hpp"
 
-#include <array>
-#include <cstdio>
-#include <sys/wait.h>
-
 namespace drape::test {
 
 CliResult run_drape(const std::string& args) {
-    CliResult r;
-    const std::string cmd = std::string("\"") + DRAPE_CLI + "\" " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
+    return run_command(std::string("\"") + DRAPE_CLI + "\" " + args);
 }
 
 }  // namespace drape::test

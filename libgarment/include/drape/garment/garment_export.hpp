@@ -1,5 +1,5 @@
 // A garment mesh as a file: OBJ (text, with the pattern uv and a group per panel) and glTF
-// binary (through assimp), beside the pattern writers (pattern_svg, pattern_dxf, pattern_json).
+// binary (through drape::gltf), beside the pattern writers (pattern_svg, pattern_dxf, pattern_json).
 #pragma once
 
 #include <drape/garment/garment_mesh.hpp>
