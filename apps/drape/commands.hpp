@@ -28,6 +28,7 @@ void add_strokes_command(CLI::App& app);
 /// `drape eval-segment DIR [--mode strokes|auto|both] [--scale-check] --out RESULT.json`
 void add_eval_segment_command(CLI::App& app);
 void add_recover_command(CLI::App& app);
+void add_eval_recover_commands(CLI::App& app);
 
 /// `drape pattern --garment skirt|pants|tshirt|dress --sizing G.json|auto [--body P.json]
 ///  [--edge CM] --out DIR` (pattern.svg/dxf/json, pattern_mesh.obj, summary.json)

@@ -42,6 +42,9 @@ class BendingObjective final : public ceres::FirstOrderFunction {
     double residual(double x) const { return (curvature(x) - target_) / target_; }
 
     bool Evaluate(const double* z, double* cost, double* gradient) const override {
+        // Out of budget: the evaluation "fails", which ends Ceres' line search and the solve;
+        // the best point seen is the answer.
+        if (evaluations + (gradient ? 3 : 1) > o_.max_evaluations) return false;
         const double x = x_of(z[0]);
         const double r = residual(x);
         cost[0] = r * r;
@@ -79,6 +82,7 @@ bool MaterialSearchOptions::is_valid(std::string* why) const {
     if (!(start_log10_bending >= min_log10_bending && start_log10_bending <= max_log10_bending))
         return fail("start_log10_bending = " + std::to_string(start_log10_bending) + " is outside the range");
     if (max_iterations < 1) return fail("max_iterations must be >= 1 (got " + std::to_string(max_iterations) + ")");
+    if (max_evaluations < 3) return fail("max_evaluations must be >= 3 (got " + std::to_string(max_evaluations) + ")");
     if (!(difference_step > 0) || !std::isfinite(difference_step))
         return fail("difference_step must be > 0 (got " + std::to_string(difference_step) + ")");
     if (!(relative_tolerance >= 0) || !std::isfinite(relative_tolerance))
@@ -117,7 +121,7 @@ MaterialSearchSummary search_bending(double target, const CurvatureOfBending& cu
     so.line_search_direction_type = ceres::LBFGS;
     so.max_num_iterations = options.max_iterations;
     so.logging_type = ceres::SILENT;
-    so.max_num_line_search_step_size_iterations = 6;
+    so.max_num_line_search_step_size_iterations = 4;
     so.function_tolerance = 1e-10;
     so.gradient_tolerance = 1e-12;
     const double tol2 = options.relative_tolerance * options.relative_tolerance;

@@ -1,6 +1,6 @@
 #include "outfit_view.hpp"
 
-#include <drape/render/rasterize.hpp>
+#include <drape/recover/label_mask.hpp>
 
 #include <algorithm>
 
@@ -20,14 +20,24 @@ garment::BinaryImage binary(const cv::Mat& m) {
     return b;
 }
 
-render::Mesh garment_mesh(const garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions, int label,
-                          const char* name) {
-    render::Mesh m;
-    m.name = name;
-    m.V = positions;
-    m.F = mesh.cloth.faces;
-    m.label = label;
-    return m;
+OutfitGarment outfit_garment(const garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions, int class_id,
+                             const char* name) {
+    OutfitGarment g;
+    g.name = name;
+    g.V = positions;
+    g.F = mesh.cloth.faces;
+    g.class_id = class_id;
+    return g;
+}
+
+// Garment `k` of a label mask: its visible pixels, and where something lies in front of it.
+garment::CandidateSilhouette silhouette_of(const LabelMask& m, size_t k) {
+    garment::CandidateSilhouette s;
+    s.visible = binary(m.visible[k + 1]);
+    cv::Mat hidden;
+    cv::bitwise_and(m.coverage[k + 1], ~m.visible[k + 1], hidden);
+    s.occluded = binary(hidden);
+    return s;
 }
 
 }  // namespace
@@ -57,56 +67,40 @@ garment::SilhouetteTarget silhouette_target(const vision::Segmentation& seg, con
 OutfitView::OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body_vertices, const body::Camera& camera,
                        int width, int height)
     : camera_(camera), width_(width), height_(height) {
-    body_.name = "body";
-    body_.V = body_vertices;
-    body_.F = model.faces;
-    body_.label = 41;
+    body_.body_V = body_vertices;
+    body_.body_F = model.faces;
 }
 
 garment::CandidateSilhouette OutfitView::candidate(const CandidateDraper&, int, const DrapedCandidate& c, int) const {
-    std::vector<render::Mesh> meshes;
-    meshes.push_back(body_);
+    OutfitMeshes scene = body_;
     for (size_t j = 0; j < c.other_meshes.size(); ++j)
-        meshes.push_back(garment_mesh(c.other_meshes[j], c.other_positions[j], 2 + static_cast<int>(j), "other garment"));
-    meshes.push_back(garment_mesh(c.mesh, c.positions, 1, "candidate garment"));
-    render::RasterOptions ro;
-    ro.width_px = width_;
-    ro.height_px = height_;
-    ro.coverage = true;
-    render::RasterImages images;
-    render::rasterize(meshes, camera_, ro, images);
-    garment::CandidateSilhouette s;
-    s.visible = binary(images.visible.back());
-    cv::Mat hidden;
-    cv::bitwise_and(images.coverage.back(), ~images.visible.back(), hidden);
-    s.occluded = binary(hidden);
-    return s;
+        scene.garments.push_back(outfit_garment(c.other_meshes[j], c.other_positions[j], 2 + static_cast<int>(j), "other"));
+    scene.garments.push_back(outfit_garment(c.mesh, c.positions, 1, "candidate"));
+    LabelMaskOptions o;
+    o.width_px = width_;
+    o.height_px = height_;
+    o.coverage = true;
+    LabelMask m;
+    label_mask(scene, camera_, o, m);
+    return silhouette_of(m, scene.garments.size() - 1);
 }
 
 OutfitRaster OutfitView::project(const std::vector<const garment::GarmentMesh*>& garments,
                                  const std::vector<const Eigen::MatrixX3d*>& positions, const std::vector<int>& labels,
                                  int body_label) const {
-    std::vector<render::Mesh> meshes;
-    meshes.push_back(body_);
-    meshes.back().label = body_label;
+    OutfitMeshes scene = body_;
+    scene.body_class_id = body_label;
     for (size_t i = 0; i < garments.size(); ++i)
-        meshes.push_back(garment_mesh(*garments[i], *positions[i], labels[i], "garment"));
-    render::RasterOptions ro;
-    ro.width_px = width_;
-    ro.height_px = height_;
-    ro.coverage = true;
-    render::RasterImages images;
-    render::rasterize(meshes, camera_, ro, images);
+        scene.garments.push_back(outfit_garment(*garments[i], *positions[i], labels[i], "garment"));
+    LabelMaskOptions o;
+    o.width_px = width_;
+    o.height_px = height_;
+    o.coverage = true;
+    LabelMask m;
+    label_mask(scene, camera_, o, m);
     OutfitRaster out;
-    out.labels = images.labels;
-    for (size_t i = 0; i < garments.size(); ++i) {
-        garment::CandidateSilhouette s;
-        s.visible = binary(images.visible[i + 1]);
-        cv::Mat hidden;
-        cv::bitwise_and(images.coverage[i + 1], ~images.visible[i + 1], hidden);
-        s.occluded = binary(hidden);
-        out.silhouettes.push_back(std::move(s));
-    }
+    out.labels = m.labels;
+    for (size_t i = 0; i < garments.size(); ++i) out.silhouettes.push_back(silhouette_of(m, i));
     return out;
 }
 

@@ -8,7 +8,7 @@
 #include <drape/body/camera.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/silhouette_distance.hpp>
-#include <drape/render/scene.hpp>
+#include <drape/recover/outfit_meshes.hpp>
 #include <drape/vision/label_table.hpp>
 #include <drape/vision/segmentation.hpp>
 
@@ -43,8 +43,11 @@ class OutfitView {
                          const std::vector<const Eigen::MatrixX3d*>& positions, const std::vector<int>& labels,
                          int body_label) const;
 
+    /// The body posed as draped, with no garment.
+    const OutfitMeshes& body() const { return body_; }
+
   private:
-    render::Mesh body_;
+    OutfitMeshes body_;
     body::Camera camera_;
     int width_, height_;
 };

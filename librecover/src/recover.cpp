@@ -298,6 +298,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                                                         mo.max_log10_bending);
                     if (round == 1 && target.has_bending) mo.start_log10_bending = target.log10_bending;
                     mo.max_iterations = options.quality == Quality::fast ? 4 : 8;
+                    mo.max_evaluations = options.quality == Quality::fast ? 8 : 12;
                     const auto ms = garment::search_bending(
                         target.k_per_m,
                         [&](double x) {

@@ -22,6 +22,9 @@ struct MaterialSearchOptions {
     /// calibrated estimate of P (docs/recovery.md), the middle of the range when it has none.
     double start_log10_bending = 1.0;
     int max_iterations = 12;          ///< L-BFGS iterations, >= 1
+    /// Drapes (K evaluations, finite differences included) at most, >= 3: the search stops
+    /// with the best K found when the budget is spent.
+    int max_evaluations = 16;
     /// Central finite-difference step in x for dK/dx, > 0.
     double difference_step = 0.05;
     /// Stop when |K − K_target| / K_target falls below this, >= 0.

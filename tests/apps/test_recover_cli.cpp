@@ -1,0 +1,136 @@
+// `drape recover` end to end: a small synthetic scene recovered at fast settings (its
+// accuracy against truth.json asserted), and clear errors for bad input. The evaluations
+// over the suite and the photos are the commands of docs/recovery.md.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli_runner.hpp"
+#include "test_paths.hpp"
+
+using drape::test::run_drape;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string q(const fs::path& p) { return "\"" + p.string() + "\""; }
+
+nlohmann::json read_json(const fs::path& p) {
+    std::ifstream f(p);
+    return nlohmann::json::parse(f);
+}
+
+// A plain 600 x 900 photo with a standing skeleton's joints (1-based, as the shared files).
+void write_plain_photo(const fs::path& dir) {
+    fs::create_directories(dir);
+    cv::Mat photo(900, 600, CV_8UC3, cv::Scalar(120, 130, 140));
+    cv::rectangle(photo, cv::Rect(250, 150, 100, 650), cv::Scalar(60, 60, 200), cv::FILLED);
+    cv::imwrite((dir / "photo.png").string(), photo);
+    const nlohmann::json j = {{"joints",
+                               {{280, 780}, {282, 620}, {285, 460}, {315, 460}, {318, 620}, {320, 780}, {240, 440},
+                                {250, 340}, {265, 230}, {335, 230}, {350, 340}, {360, 440}, {300, 210}, {300, 150}}},
+                              {"pixel_origin", "one_based"}};
+    std::ofstream(dir / "joints.json") << j.dump();
+}
+
+}  // namespace
+
+TEST_CASE("drape recover refuses bad input with a clear error", "[apps][recover]") {
+    const fs::path dir = drape::test::scratch_dir("recover_bad");
+    write_plain_photo(dir);
+    const std::string base = "recover " + q(dir / "photo.png") + " --joints " + q(dir / "joints.json");
+
+    SECTION("an unreadable image") {
+        std::ofstream(dir / "broken.jpg") << "not a jpeg";
+        const auto r = run_drape("recover " + q(dir / "broken.jpg") + " --joints " + q(dir / "joints.json") +
+                                 " --out " + q(dir / "out"));
+        INFO(r.out);
+        CHECK(r.exit_code != 0);
+        CHECK(r.out.find("broken.jpg") != std::string::npos);
+    }
+    SECTION("joints that do not match the image") {
+        nlohmann::json j = read_json(dir / "joints.json");
+        j["joints"][13] = {300, 1500};
+        std::ofstream(dir / "far.json") << j.dump();
+        const auto r = run_drape("recover " + q(dir / "photo.png") + " --joints " + q(dir / "far.json") + " --out " +
+                                 q(dir / "out"));
+        INFO(r.out);
+        CHECK(r.exit_code == 2);
+        CHECK(r.out.find("head") != std::string::npos);
+    }
+    SECTION("strokes of the wrong size") {
+        cv::imwrite((dir / "small_strokes.png").string(), cv::Mat(450, 300, CV_8UC1, cv::Scalar(255)));
+        const auto r = run_drape(base + " --strokes " + q(dir / "small_strokes.png") + " --out " + q(dir / "out"));
+        INFO(r.out);
+        CHECK(r.exit_code == 2);
+        CHECK(r.out.find("300 x 450") != std::string::npos);
+    }
+    SECTION("no garment found") {
+        cv::Mat strokes(900, 600, CV_8UC1, cv::Scalar(255));
+        cv::rectangle(strokes, cv::Rect(20, 20, 100, 800), cv::Scalar(0), cv::FILLED);    // background
+        cv::rectangle(strokes, cv::Rect(290, 300, 20, 400), cv::Scalar(41), cv::FILLED);  // skin
+        cv::imwrite((dir / "no_garment.png").string(), strokes);
+        const auto r = run_drape(base + " --strokes " + q(dir / "no_garment.png") + " --out " + q(dir / "out"));
+        INFO(r.out);
+        CHECK(r.exit_code == 2);
+        CHECK(r.out.find("no garment found") != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "out" / "result.json"));
+    }
+    SECTION("an unknown garment or quality") {
+        const auto g = run_drape(base + " --garment coat --out " + q(dir / "out"));
+        CHECK(g.exit_code == 2);
+        CHECK(g.out.find("unknown garment 'coat'") != std::string::npos);
+        const auto qy = run_drape(base + " --quality best --out " + q(dir / "out"));
+        CHECK(qy.exit_code == 2);
+        CHECK(qy.out.find("unknown quality 'best'") != std::string::npos);
+    }
+}
+
+TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][recover]") {
+    const fs::path dir = drape::test::scratch_dir("recover_synth");
+    const fs::path scene = dir / "scene";
+    const auto made = run_drape("synth --seed 7 --garment skirt --pose a --material gray-interlock --bending-scale 3 "
+                                "--edge 6 --samples 2 --out " + q(scene));
+    INFO(made.out);
+    REQUIRE(made.exit_code == 0);
+    const fs::path out = dir / "out";
+    const auto r = run_drape("recover " + q(scene / "image_midday.png") + " --joints " + q(scene / "joints.json") +
+                             " --strokes " + q(scene / "strokes.png") +
+                             " --garment skirt --quality fast --particles 8 --generations 2 --out " + q(out));
+    INFO(r.out);
+    REQUIRE((r.exit_code == 0 || r.exit_code == 1));
+    for (const char* f : {"result.json", "garment_0.glb", "garment_0.obj", "pattern_0.svg", "pattern_0.dxf",
+                          "pattern_0.json", "body.glb", "outfit.glb", "mask.png", "overlay.png", "report.html"})
+        CHECK(fs::exists(out / f));
+    const nlohmann::json result = read_json(out / "result.json");
+    const nlohmann::json truth = read_json(scene / "truth.json");
+    // The schema of truth.json: every key of truth is in result.
+    for (const auto& [key, value] : truth["body"].items()) CHECK(result["body"].contains(key));
+    const auto& tg = truth["garments"][0];
+    const auto& rg = result["garments"][0];
+    for (const auto& [key, value] : tg.items()) CHECK(rg.contains(key));
+    for (const auto& [key, value] : tg["material"].items()) CHECK(rg["material"].contains(key));
+    CHECK(rg["type"] == "skirt");
+    // Sizing accuracy (issue 21's metric) over the skirt's four parameters.
+    double acc = 0;
+    for (const auto& [key, value] : tg["sizing"].items()) {
+        const double gt = value.get<double>(), est = rg["sizing"][key].get<double>();
+        acc += std::max(0.0, 1.0 - std::abs(est - gt) / std::abs(gt));
+    }
+    acc /= 4.0;
+    CHECK(acc >= 0.80);
+    // The recovered mask overlaps the skirt's true pixels.
+    const cv::Mat mask = cv::imread((out / "mask.png").string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat labels = cv::imread((scene / "labels.png").string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(mask.size() == labels.size());
+    const double inter = cv::countNonZero((mask == 42) & (labels == 42));
+    const double uni = cv::countNonZero((mask == 42) | (labels == 42));
+    CHECK(inter / uni >= 0.75);
+    CHECK(rg["drape"]["penetration_max_m"].get<double>() <= 0.001);
+    CHECK(rg["drape"]["self_intersections"].get<int>() == 0);
+}
