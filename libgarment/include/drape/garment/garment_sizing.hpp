@@ -8,6 +8,8 @@
 #include <drape/garment/pattern.hpp>
 #include <drape/garment/tshirt.hpp>
 
+#include <vector>
+
 namespace drape::garment {
 
 /// A sizing of any template; only the member of `type` is used (centimetres, degrees, as
@@ -23,5 +25,15 @@ struct GarmentSizing {
 /// The pattern of a sizing (make_circle_skirt, make_pants, make_tshirt or make_dress).
 /// \throw drape::InvalidInput as the template's maker, naming the parameter and value.
 Pattern make_pattern(const GarmentSizing& sizing);
+
+/// The values of the template's sizing parameters (cm, degrees) in the order of its
+/// ParameterSpec table; a dress: the bodice's six (TShirtSizing), then the skirt's four.
+/// For optimisers that see G as a vector.
+std::vector<double> sizing_values(const GarmentSizing& sizing);
+
+/// `sizing` with its template's parameters set to `values` (ordered as sizing_values).
+/// Ranges are not checked here (make_pattern does).
+/// \throw drape::InvalidInput if the count differs from the template's.
+GarmentSizing with_sizing_values(GarmentSizing sizing, const std::vector<double>& values);
 
 }  // namespace drape::garment
