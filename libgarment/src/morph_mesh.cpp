@@ -42,22 +42,22 @@ bool PatternMorph::same_structure(const Pattern& a, const Pattern& b, std::strin
         return false;
     };
     if (a.panels.size() != b.panels.size())
-        return fail(detail::concat("the patterns have ", a.panels.size(), " and ", b.panels.size(), " panels"));
+        return fail(drape::detail::concat("the patterns have ", a.panels.size(), " and ", b.panels.size(), " panels"));
     for (size_t p = 0; p < a.panels.size(); ++p) {
         if (a.panels[p].name != b.panels[p].name)
-            return fail(detail::concat("panel ", p, " is \"", a.panels[p].name, "\" in one pattern and \"",
+            return fail(drape::detail::concat("panel ", p, " is \"", a.panels[p].name, "\" in one pattern and \"",
                                        b.panels[p].name, "\" in the other"));
         if (a.panels[p].edges.size() != b.panels[p].edges.size())
-            return fail(detail::concat("panel \"", a.panels[p].name, "\" has ", a.panels[p].edges.size(), " and ",
+            return fail(drape::detail::concat("panel \"", a.panels[p].name, "\" has ", a.panels[p].edges.size(), " and ",
                                        b.panels[p].edges.size(), " edges"));
     }
     if (a.seams.size() != b.seams.size())
-        return fail(detail::concat("the patterns have ", a.seams.size(), " and ", b.seams.size(), " seams"));
+        return fail(drape::detail::concat("the patterns have ", a.seams.size(), " and ", b.seams.size(), " seams"));
     for (size_t s = 0; s < a.seams.size(); ++s) {
         const Seam &x = a.seams[s], &y = b.seams[s];
         if (x.panel_a != y.panel_a || x.edge_a != y.edge_a || x.panel_b != y.panel_b || x.edge_b != y.edge_b ||
             x.orientation != y.orientation)
-            return fail(detail::concat("seam ", s, " joins other edges"));
+            return fail(drape::detail::concat("seam ", s, " joins other edges"));
     }
     return true;
 }
