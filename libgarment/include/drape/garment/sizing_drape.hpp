@@ -79,7 +79,8 @@ public:
     ///        DressedOutfit::positions[g].
     /// \param body_vertices the posed body (#B x 3), \param body_faces its faces.
     /// \param material the garment's fabric (the waistband is made of it, stiffened, as in
-    ///        dress_and_drape).
+    ///        dress_and_drape; its faces are chosen once, on the base mesh, and kept for
+    ///        every sizing).
     /// \throw drape::InvalidInput if the options, pattern, mesh, positions, body or material
     ///        are invalid or do not fit together.
     SizingDrape(const Pattern& pattern, const GarmentSizing& sizing, const GarmentMesh& mesh,
