@@ -47,5 +47,7 @@ void add_synth_command(CLI::App& app);
 
 /// `drape bench-cloth [--n 32|64] [--seconds S] [--material NAME|PATH] [--threads N] [--out R.json]`
 void add_bench_cloth_command(CLI::App& app);
+/// drape bench-sizing-drape: the fast re-drape of recovery against the full pipeline.
+void add_bench_sizing_drape_command(CLI::App& app);
 
 }  // namespace drape::app

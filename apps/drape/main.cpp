@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     drape::app::add_body_command(app);
     drape::app::add_fit_body_command(app);
     drape::app::add_bench_cloth_command(app);
+    drape::app::add_bench_sizing_drape_command(app);
     drape::app::add_render_command(app);
     drape::app::add_segment_command(app);
     drape::app::add_strokes_command(app);

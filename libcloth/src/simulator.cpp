@@ -112,6 +112,36 @@ void Simulator::Impl::renumber() {
             for (int c = 0; c < 3; ++c) dof_index[static_cast<std::size_t>(3 * i + c)] = free_dofs++;
 }
 
+void Simulator::Impl::compute_rest_state() {
+    // Lumped masses and rest areas: each face gives ρ_f A_f / 3 and A_f / 3 to its corners.
+    mass = Eigen::VectorXd::Zero(x.rows());
+    area = Eigen::VectorXd::Zero(x.rows());
+    triangles.clear();
+    triangles.reserve(static_cast<std::size_t>(mesh.face_count()));
+    for (int f = 0; f < mesh.face_count(); ++f) {
+        Eigen::Vector2d u[3];
+        for (int c = 0; c < 3; ++c) u[c] = mesh.pattern.row(mesh.pattern_faces(f, c)).transpose();
+        triangles.push_back(triangle_rest(u[0], u[1], u[2]));
+        const double third = triangles.back().area_m2 / 3;
+        for (int c = 0; c < 3; ++c) {
+            area(mesh.faces(f, c)) += third;
+            mass(mesh.faces(f, c)) += material_of(f).density_kg_per_m2 * third;
+        }
+    }
+    hinge_rests.clear();
+    bend_curves.clear();
+    hinge_rests.reserve(hinges.size());
+    bend_curves.reserve(hinges.size());
+    for (const Hinge& h : hinges) {
+        hinge_rests.push_back(hinge_rest(mesh, h));
+        // A hinge between two materials bends with its first face's (documented in the header).
+        bend_curves.push_back(bending_curve(material_of(h.faces[0]), hinge_rests.back()));
+    }
+    // The stiffness of the last step belongs to the old rest shape or material.
+    k_stretch.clear();
+    k_lagged.clear();
+}
+
 Simulator::Simulator(ClothMesh mesh, Material material, SimulatorOptions options)
     // `mesh` is copied, not moved: the face count is read in the same argument list, whose
     // evaluation order is unspecified (the copy is negligible next to any simulation).
@@ -142,25 +172,8 @@ Simulator::Simulator(ClothMesh mesh, std::vector<Material> materials, std::vecto
     m.x = m.mesh.positions;
     m.v = Eigen::MatrixX3d::Zero(m.x.rows(), 3);
     m.pinned.assign(static_cast<std::size_t>(m.x.rows()), false);
-    // Lumped masses and rest areas: each face gives ρ_f A_f / 3 and A_f / 3 to its corners.
-    m.mass = Eigen::VectorXd::Zero(m.x.rows());
-    m.area = Eigen::VectorXd::Zero(m.x.rows());
-    for (int f = 0; f < m.mesh.face_count(); ++f) {
-        Eigen::Vector2d u[3];
-        for (int c = 0; c < 3; ++c) u[c] = m.mesh.pattern.row(m.mesh.pattern_faces(f, c)).transpose();
-        m.triangles.push_back(triangle_rest(u[0], u[1], u[2]));
-        const double third = m.triangles.back().area_m2 / 3;
-        for (int c = 0; c < 3; ++c) {
-            m.area(m.mesh.faces(f, c)) += third;
-            m.mass(m.mesh.faces(f, c)) += m.material_of(f).density_kg_per_m2 * third;
-        }
-    }
     m.hinges = build_hinges(m.mesh);
-    for (const Hinge& h : m.hinges) {
-        m.hinge_rests.push_back(hinge_rest(m.mesh, h));
-        // A hinge between two materials bends with its first face's (documented in the header).
-        m.bend_curves.push_back(bending_curve(m.material_of(h.faces[0]), m.hinge_rests.back()));
-    }
+    m.compute_rest_state();
     m.self_contact = internal::SelfContact(m.mesh.faces, m.mesh.vertex_count());
     m.set_rest_filter();
     m.renumber();
@@ -238,6 +251,37 @@ void Simulator::set_stitches(const std::vector<Stitch>& stitches) {
 }
 
 const std::vector<Stitch>& Simulator::stitches() const { return impl_->stitches; }
+
+void Simulator::set_rest_positions(const Eigen::MatrixX2d& pattern_m) {
+    Impl& m = *impl_;
+    require(pattern_m.rows() == m.mesh.pattern.rows(), "Simulator::set_rest_positions: ", pattern_m.rows(),
+            " pattern rows, the mesh has ", m.mesh.pattern.rows());
+    // The same checks as construction (finite coordinates, every pattern triangle
+    // counter-clockwise with area > 1e-12 m², naming the face), on the mesh as it would be.
+    ClothMesh next = m.mesh;
+    next.pattern = pattern_m;
+    try {
+        next.validate();
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(std::string("Simulator::set_rest_positions: ") + e.what());
+    }
+    m.mesh.pattern = pattern_m;
+    m.compute_rest_state();
+    // Pattern neighbours within one layer (self-contact) are measured in the rest shape.
+    m.set_rest_filter();
+}
+
+void Simulator::set_materials(std::vector<Material> materials) {
+    Impl& m = *impl_;
+    require(materials.size() == m.materials.size(), "Simulator::set_materials: ", materials.size(),
+            " materials, the simulator was constructed with ", m.materials.size());
+    std::string why;
+    for (std::size_t k = 0; k < materials.size(); ++k)
+        require(materials[k].is_valid(&why), "Simulator::set_materials: material ", k, " is invalid: ", why);
+    m.materials = std::move(materials);
+    m.compute_rest_state();
+}
+
 
 ContactReport Simulator::contact_report() const {
     const Impl& m = *impl_;

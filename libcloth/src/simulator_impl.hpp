@@ -170,6 +170,10 @@ struct Simulator::Impl {
           self_contact(o.self_contact), dof_index(o.dof_index), free_dofs(o.free_dofs) {}
 
     void renumber();
+    // Everything construction derives from the pattern (rest shape) and the materials:
+    // rest triangles, lumped masses and areas, hinge rest data and bending curves; clears
+    // the frozen stretching stiffness. Needs mesh, materials, face_material, x and hinges.
+    void compute_rest_state();
     const Material& material_of(int face) const {
         return materials[static_cast<std::size_t>(face_material[static_cast<std::size_t>(face)])];
     }

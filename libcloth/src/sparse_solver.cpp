@@ -1,5 +1,7 @@
 #include "sparse_solver.hpp"
 
+#include <mutex>
+
 #ifdef DRAPE_CLOTH_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #else
@@ -72,6 +74,12 @@ void SparseSpdSolver::reset() {
 bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& m) {
     [[maybe_unused]] const SingleThreadedOpenMp single_threaded;
     if (!impl_->analysed) {
+        // The symbolic analysis runs METIS (CHOLMOD's ordering), whose random generator
+        // keeps global state in GKlib builds: simulators on several threads (garment
+        // recovery runs one per thread) analyse one at a time. Suspected, not proven, cause
+        // of two threaded re-drapes differing from serial ones by rounding (notes/dressing.md).
+        static std::mutex metis;
+        const std::lock_guard<std::mutex> lock(metis);
         impl_->solver.analyzePattern(m);
         impl_->analysed = true;
     }

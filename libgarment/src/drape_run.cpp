@@ -17,16 +17,28 @@ namespace drape::garment::detail {
 
 namespace {
 
+// Body state at time t of a path spread evenly over `duration` (piecewise linear).
+Eigen::MatrixX3d body_at(const std::vector<Eigen::MatrixX3d>& path, double t, double duration) {
+    if (path.size() == 1 || t >= duration) return path.back();
+    const double u = std::max(0.0, t / duration) * double(path.size() - 1);
+    const size_t k = std::min(size_t(u), path.size() - 2);
+    const double a = u - double(k);
+    return (1 - a) * path[k] + a * path[k + 1];
+}
+// Welding and the twin simulators below keep the faces, so face_material holds for all.
+cloth::Simulator make_simulator(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
+                                const std::vector<cloth::Material>& materials, const std::vector<int>& face_material,
+                                const DrapeOptions& options) {
+    cloth::ClothMesh cm = mesh.cloth;
+    cm.positions = initial_positions;
+    return cloth::Simulator(std::move(cm), materials, face_material, options.simulator);
+}
+
+}  // namespace
+
 double kinetic_energy(const cloth::Simulator& sim) {
     return 0.5 * (sim.masses().array() * sim.velocities().rowwise().squaredNorm().array()).sum();
 }
-
-// The welded simulation mesh of a garment: one vertex per stitched group, faces renumbered;
-// pattern coordinates stay per face corner (each panel keeps its own rest shape).
-struct Welded {
-    cloth::ClothMesh mesh;
-    std::vector<int> vertex_of;  // garment vertex -> welded vertex
-};
 
 Welded weld(const cloth::ClothMesh& source, const Eigen::MatrixX3d& positions, const Eigen::MatrixX3d& velocities,
             const std::vector<std::array<int, 2>>& stitches, Eigen::MatrixX3d* welded_velocities) {
@@ -59,25 +71,6 @@ Welded weld(const cloth::ClothMesh& source, const Eigen::MatrixX3d& positions, c
     *welded_velocities = vel;
     return w;
 }
-
-// Body state at time t of a path spread evenly over `duration` (piecewise linear).
-Eigen::MatrixX3d body_at(const std::vector<Eigen::MatrixX3d>& path, double t, double duration) {
-    if (path.size() == 1 || t >= duration) return path.back();
-    const double u = std::max(0.0, t / duration) * double(path.size() - 1);
-    const size_t k = std::min(size_t(u), path.size() - 2);
-    const double a = u - double(k);
-    return (1 - a) * path[k] + a * path[k + 1];
-}
-// Welding and the twin simulators below keep the faces, so face_material holds for all.
-cloth::Simulator make_simulator(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
-                                const std::vector<cloth::Material>& materials, const std::vector<int>& face_material,
-                                const DrapeOptions& options) {
-    cloth::ClothMesh cm = mesh.cloth;
-    cm.positions = initial_positions;
-    return cloth::Simulator(std::move(cm), materials, face_material, options.simulator);
-}
-
-}  // namespace
 
 void check_drape_inputs(const GarmentMesh& mesh, const Eigen::MatrixX3d& initial_positions,
                         const std::vector<Eigen::MatrixX3d>& body_path, const std::vector<cloth::Material>& materials,

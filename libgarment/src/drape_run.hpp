@@ -7,10 +7,24 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <string>
 #include <vector>
 
 namespace drape::garment::detail {
+
+/// ½ Σ m v² of the simulator's state (J).
+double kinetic_energy(const cloth::Simulator& sim);
+
+/// The welded simulation mesh of a garment: one vertex per stitched group (at the mean of
+/// its members' positions and velocities), faces renumbered; pattern coordinates stay per
+/// face corner (each panel keeps its own rest shape). Not validated.
+struct Welded {
+    cloth::ClothMesh mesh;
+    std::vector<int> vertex_of;  ///< garment vertex -> welded vertex
+};
+Welded weld(const cloth::ClothMesh& source, const Eigen::MatrixX3d& positions, const Eigen::MatrixX3d& velocities,
+            const std::vector<std::array<int, 2>>& stitches, Eigen::MatrixX3d* welded_velocities);
 
 /// Throws drape::InvalidInput unless the options, materials, per-face materials, initial
 /// positions (#V x 3) and body path (each #B x 3) fit the garment mesh.

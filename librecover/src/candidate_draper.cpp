@@ -8,6 +8,8 @@ CandidateDraper::CandidateDraper(const body::BodyModel& model, const body::Shape
                                  const RecoverOptions& options)
     : model_(model), shaped_(shaped), pose_(pose), options_(options) {}
 
+CandidateDraper::~CandidateDraper() = default;
+
 garment::DressOutfitOptions CandidateDraper::options_at(double edge_cm, bool clear_arms) const {
     garment::DressOutfitOptions o;
     o.mesh.target_edge_cm = edge_cm;
@@ -20,31 +22,41 @@ garment::DressOutfitOptions CandidateDraper::options_at(double edge_cm, bool cle
 
 garment::DressOutfitSummary CandidateDraper::dress(const std::vector<garment::GarmentRequest>& requests) {
     requests_ = requests;
-    const auto s = garment::dress_outfit(model_, shaped_, pose_, requests_, options_at(options_.search_edge_cm, true),
-                                         outfit_);
+    const garment::DressOutfitOptions o = options_at(options_.search_edge_cm, true);
+    const auto s = garment::dress_outfit(model_, shaped_, pose_, requests_, o, outfit_);
     pose_ = outfit_.pose;  // candidates are draped in the pose the arms were cleared to
+    if (s.termination != garment::DressOutfitTermination::draped) return s;
+    // One fast re-drape per garment (morphed rest shape, warm start from this drape), copied
+    // once per worker: each worker owns its simulators.
+    garment::SizingDrapeOptions so;
+    so.drape = o.drape;
+    drapers_.assign(static_cast<size_t>(options_.threads), {});
+    for (size_t g = 0; g < requests_.size(); ++g)
+        drapers_[0].emplace_back(outfit_, static_cast<int>(g), model_.faces, requests_[g].material, so);
+    for (size_t w = 1; w < drapers_.size(); ++w) drapers_[w] = drapers_[0];
     return s;
 }
 
 DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& sizing,
-                                       const cloth::Material& material, int /*worker*/) const {
-    std::vector<garment::GarmentRequest> requests = requests_;
-    requests.at(static_cast<size_t>(index)).sizing = sizing;
-    requests.at(static_cast<size_t>(index)).material = material;
-    garment::DressedOutfit made;
-    garment::dress_outfit(model_, shaped_, pose_, requests, options_at(options_.search_edge_cm, false), made);
+                                       const cloth::Material& material, int worker) const {
+    if (drapers_.empty()) throw InvalidInput("recover: candidates before the outfit was dressed");
+    garment::SizingDrape& d = drapers_.at(static_cast<size_t>(worker)).at(static_cast<size_t>(index));
+    const cloth::Material& now = d.material();
+    if (now.bending_scale != material.bending_scale || now.stretching_scale != material.stretching_scale ||
+        now.bending_n_m != material.bending_n_m || now.stretching_n_per_m != material.stretching_n_per_m ||
+        now.density_kg_per_m2 != material.density_kg_per_m2)
+        d.set_material(material);
+    const garment::SizingDrapeResult r = d.evaluate(sizing);  // InvalidInput: the template or the morph refuses it
     DrapedCandidate c;
-    for (size_t i = 0; i < made.meshes.size(); ++i) {
-        if (static_cast<int>(i) == index) {
-            c.mesh = made.meshes[i];
-            c.positions = made.positions[i];
-        } else {
-            c.other_meshes.push_back(made.meshes[i]);
-            c.other_positions.push_back(made.positions[i]);
-            c.other_index.push_back(static_cast<int>(i));
-        }
+    c.mesh = d.mesh();
+    c.positions = r.positions;
+    c.usable = r.usable(d.options().drape);
+    for (size_t i = 0; i < outfit_.meshes.size(); ++i) {
+        if (static_cast<int>(i) == index) continue;
+        c.other_meshes.push_back(outfit_.meshes[i]);
+        c.other_positions.push_back(outfit_.positions[i]);
+        c.other_index.push_back(static_cast<int>(i));
     }
-    if (c.positions.rows() == 0) throw InvalidInput("the candidate could not be draped");
     return c;
 }
 

@@ -5,6 +5,7 @@
 #include <drape/body/body_model.hpp>
 #include <drape/body/pose.hpp>
 #include <drape/garment/dress_outfit.hpp>
+#include <drape/garment/sizing_drape.hpp>
 #include <drape/recover/recover.hpp>
 
 #include <Eigen/Core>
@@ -20,20 +21,25 @@ struct DrapedCandidate {
     std::vector<garment::GarmentMesh> other_meshes;  ///< the other garments (occluders)
     std::vector<Eigen::MatrixX3d> other_positions;
     std::vector<int> other_index;                    ///< their indices in the outfit
+    bool usable = false;                             ///< the re-drape settled cleanly
 };
 
 class CandidateDraper {
   public:
     CandidateDraper(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
                     const RecoverOptions& options);
+    ~CandidateDraper();
 
     /// The first drape of the outfit at the search resolution (the initial registration).
     garment::DressOutfitSummary dress(const std::vector<garment::GarmentRequest>& requests);
     const garment::DressedOutfit& outfit() const { return outfit_; }
 
-    /// Garment `index` made with `sizing` and `material`, the others as they are. Called
-    /// concurrently with distinct `worker`s (0 .. options.threads - 1).
-    /// \throw drape::InvalidInput if the template refuses the sizing.
+    /// Garment `index` made with `sizing` and `material`: its fast re-drape
+    /// (garment::SizingDrape: the search mesh morphed to the sizing, warm-started from the
+    /// first drape, settled); the other garments as first draped. Called concurrently with
+    /// distinct `worker`s (0 .. options.threads - 1), each with its own simulators.
+    /// \throw drape::InvalidInput if the template refuses the sizing or the morph inverts a
+    ///        triangle (the candidate is too far from the first drape's sizing).
     DrapedCandidate drape(int index, const garment::GarmentSizing& sizing, const cloth::Material& material,
                           int worker) const;
 
@@ -54,6 +60,8 @@ class CandidateDraper {
     RecoverOptions options_;
     std::vector<garment::GarmentRequest> requests_;
     garment::DressedOutfit outfit_;
+    /// [worker][garment]: each worker's own re-drapes (SizingDrape copies).
+    mutable std::vector<std::vector<garment::SizingDrape>> drapers_;
 };
 
 }  // namespace drape::recover

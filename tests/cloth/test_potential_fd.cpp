@@ -62,6 +62,22 @@ TEST_CASE("whole incremental potential: finite-difference gradient and Hessian w
     Eigen::MatrixX3d v(mesh.vertex_count(), 3);
     for (Eigen::Index i = 0; i < v.rows(); ++i) v.row(i) << 0.05 * unit(rng), 0.01 * unit(rng), 0.05 * unit(rng);
     sim.set_velocities(v);
+    // Also after the rest shape or the materials changed on the constructed simulator
+    // (Simulator::set_rest_positions, set_materials: a new sizing or fabric in recovery).
+    const int variant = GENERATE(0, 1, 2);
+    if (variant == 1) {
+        Eigen::MatrixX2d uv = mesh.pattern;
+        uv.col(0) = 1.05 * mesh.pattern.col(0) + 0.02 * mesh.pattern.col(1);
+        uv.col(1) = 0.96 * mesh.pattern.col(1);
+        sim.set_rest_positions(uv);
+    } else if (variant == 2) {
+        Material stiff = drape::test::gray_interlock_material();
+        stiff.bending_scale = 30;
+        stiff.stretching_scale = 2;
+        stiff.density_kg_per_m2 *= 1.5;
+        sim.set_materials({stiff});
+    }
+    INFO("variant " << variant << " (0 as built, 1 new rest shape, 2 new material)");
 
     const double thickness = options.contact_thickness_m;
     drape::cloth::internal::PotentialProbe probe(sim, 2 * thickness);

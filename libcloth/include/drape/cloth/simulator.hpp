@@ -216,6 +216,24 @@ public:
     void set_stitches(const std::vector<Stitch>& stitches);
     const std::vector<Stitch>& stitches() const;
 
+    /// Changes the rest shape: new pattern coordinates (mesh().pattern's rows, pattern frame,
+    /// metres), the same faces. Recomputes what construction derives from the pattern (rest
+    /// triangles, lumped masses and areas, hinge rest lengths/areas/directions and bending
+    /// curves, the self-contact rest-neighbour filter); the state (positions, velocities,
+    /// pins, obstacle, stitches) and the solver's symbolic analysis (the sparsity pattern
+    /// does not change) are kept, so the next step or static solve costs what any other
+    /// does. For garment recovery: the sizing G changes the pattern, not its topology.
+    /// \throw drape::InvalidInput if the row count differs, a coordinate is not finite or a
+    ///        pattern triangle is degenerate or clockwise (naming the face), as
+    ///        ClothMesh::validate; the simulator is then unchanged.
+    void set_rest_positions(const Eigen::MatrixX2d& pattern_m);
+    /// Changes the materials (as many as constructed; face_material() is kept): masses,
+    /// stretching and bending curves are recomputed as construction does. State, stitches
+    /// and the symbolic analysis are kept.
+    /// \throw drape::InvalidInput if the count differs or a material is invalid (naming it);
+    ///        the simulator is then unchanged.
+    void set_materials(std::vector<Material> materials);
+
     /// Penetration, stitch gaps and self-intersections of the current state.
     ContactReport contact_report() const;
 
