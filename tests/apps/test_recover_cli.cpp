@@ -29,7 +29,7 @@ nlohmann::json read_json(const fs::path& p) {
 void write_plain_photo(const fs::path& dir) {
     fs::create_directories(dir);
     cv::Mat photo(900, 600, CV_8UC3, cv::Scalar(120, 130, 140));
-    cv::rectangle(photo, cv::Rect(250, 150, 100, 650), cv::Scalar(60, 60, 200), cv::FILLED);
+    photo(cv::Rect(250, 150, 100, 650)).setTo(cv::Scalar(60, 60, 200));
     cv::imwrite((dir / "photo.png").string(), photo);
     const nlohmann::json j = {{"joints",
                                {{280, 780}, {282, 620}, {285, 460}, {315, 460}, {318, 620}, {320, 780}, {240, 440},
@@ -72,8 +72,8 @@ TEST_CASE("drape recover refuses bad input with a clear error", "[apps][recover]
     }
     SECTION("no garment found") {
         cv::Mat strokes(900, 600, CV_8UC1, cv::Scalar(255));
-        cv::rectangle(strokes, cv::Rect(20, 20, 100, 800), cv::Scalar(0), cv::FILLED);    // background
-        cv::rectangle(strokes, cv::Rect(290, 300, 20, 400), cv::Scalar(41), cv::FILLED);  // skin
+        strokes(cv::Rect(20, 20, 100, 800)).setTo(cv::Scalar(0));    // background
+        strokes(cv::Rect(290, 300, 20, 400)).setTo(cv::Scalar(41));  // skin
         cv::imwrite((dir / "no_garment.png").string(), strokes);
         const auto r = run_drape(base + " --strokes " + q(dir / "no_garment.png") + " --out " + q(dir / "out"));
         INFO(r.out);
