@@ -275,6 +275,13 @@ int fit(const std::string& fabric, const std::vector<std::string>& roots, const 
         if (ok && e < best_b) best_b = e, b_form = f;
     }
     const WrinkleCalibration c = drape::garment::fit_wrinkle_calibration(samples, fabric, k_form, b_form, lighting);
+    // What P adds to s_b: the error of always answering the middle of the calibrated range.
+    double centre_error = 0;
+    int centre_n = 0;
+    for (const auto& o : drape::garment::wrinkle_observations(samples, fabric, true, WrinkleLighting::both))
+        centre_error += std::abs(o.y - 0.5 * (c.log10_bending_min + c.log10_bending_max)), ++centre_n;
+    table << "\nBaseline without P: log10 s_b = the middle of the range, mean abs dlog10 s_b "
+          << fixed(centre_error / std::max(1, centre_n), 3) << ".\n";
     std::cerr << table.str();
     std::cerr << "chosen: K " << drape::garment::wrinkle_model_form_name(k_form) << ", s_b "
               << drape::garment::wrinkle_model_form_name(b_form) << ", fitted on P at " << lighting_name(lighting)

@@ -90,7 +90,7 @@ TEST_CASE("embedded curvature calibration: its data covers the paper's space", "
         ++of_fabric;
         types.insert(s.type);
     }
-    CHECK(of_fabric >= 19);
+    CHECK(of_fabric >= 38);
     CHECK(of_fabric == c.errors.garments);
     CHECK(types.size() == 4);
     CHECK(c.log10_bending_min == Approx(0).margin(1e-12));
