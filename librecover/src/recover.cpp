@@ -4,13 +4,13 @@
 
 #include "candidate_draper.hpp"
 #include "initial_sizing.hpp"
-#include "material_target.hpp"
 #include "outfit_view.hpp"
 
 #include <drape/body/measurements.hpp>
 #include <drape/cloth/cloth_mesh.hpp>
 #include <drape/cloth/local_curvature.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/garment/curvature_calibration.hpp>
 #include <drape/garment/garment_type.hpp>
 #include <drape/garment/silhouette_distance.hpp>
 #include <drape/vision/label_table.hpp>
@@ -291,12 +291,14 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                 // Material: the bending scale whose drape has the target curvature.
                 if (options.estimate_material && g.wrinkle_density_per_m2 >= 0) {
                     ts = Clock::now();
-                    const CurvatureTarget target = curvature_target(g.type, g.wrinkle_density_per_m2);
+                    // The calibrated mapping of P (docs/material-estimation.md).
+                    const garment::CurvatureTarget target =
+                        garment::curvature_from_wrinkle_density(g.type, g.wrinkle_density_per_m2);
                     g.target_curvature_per_m = target.k_per_m;
                     garment::MaterialSearchOptions mo;
                     mo.start_log10_bending = std::clamp(std::log10(g.material.bending_scale), mo.min_log10_bending,
                                                         mo.max_log10_bending);
-                    if (round == 1 && target.has_bending) mo.start_log10_bending = target.log10_bending;
+                    if (round == 1) mo.start_log10_bending = target.log10_bending_scale;
                     mo.max_iterations = options.quality == Quality::fast ? 4 : 8;
                     mo.max_evaluations = options.quality == Quality::fast ? 8 : 12;
                     const auto ms = garment::search_bending(
@@ -333,8 +335,8 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                     const double slope = (k_at(xh) - k_at(xl)) / (xh - xl);  // dK / dlog10 s_b (< 0 usually)
                     double lo = 0, hi = 2;
                     if (std::abs(slope) > 1e-9) {
-                        const double a = x + (target.k_high - ms.mean_curvature_per_m) / slope;
-                        const double b = x + (target.k_low - ms.mean_curvature_per_m) / slope;
+                        const double a = x + (target.k_high_per_m - ms.mean_curvature_per_m) / slope;
+                        const double b = x + (target.k_low_per_m - ms.mean_curvature_per_m) / slope;
                         lo = std::clamp(std::min(a, b), 0.0, 2.0);
                         hi = std::clamp(std::max(a, b), 0.0, 2.0);
                     }
