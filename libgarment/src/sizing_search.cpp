@@ -139,6 +139,10 @@ SizingSearchSummary search_sizing(const GarmentSizing& start, const SizingObject
     if (!options.is_valid(&why)) throw InvalidInput("sizing search options: " + why);
     if (!objective) throw InvalidInput("sizing search: no objective given");
     const auto params = sizing_parameters(start.type);
+    if (!options.lower_bounds.empty() && options.lower_bounds.size() != params.size())
+        throw InvalidInput("sizing search options: lower_bounds has " + std::to_string(options.lower_bounds.size()) +
+                           " entries, the " + garment_type_name(start.type) + " template has " +
+                           std::to_string(params.size()) + " parameters");
     if (!options.free.empty() && options.free.size() != params.size())
         throw InvalidInput("sizing search options: free has " + std::to_string(options.free.size()) +
                            " entries, the " + garment_type_name(start.type) + " template has " +
@@ -160,8 +164,11 @@ SizingSearchSummary search_sizing(const GarmentSizing& start, const SizingObject
     for (size_t i = 0; i < params.size(); ++i) {
         if (!options.free.empty() && !options.free[i]) continue;
         const double half = options.box_fraction * (params[i].max - params[i].min);
-        const double v = std::clamp(values[i], params[i].min, params[i].max);
-        double lo = std::max(params[i].min, v - half), hi = std::min(params[i].max, v + half);
+        const double floor_i = options.lower_bounds.empty() || std::isnan(options.lower_bounds[i])
+                                   ? params[i].min
+                                   : std::clamp(options.lower_bounds[i], params[i].min, params[i].max);
+        const double v = std::clamp(values[i], floor_i, params[i].max);
+        double lo = std::max(floor_i, v - half), hi = std::min(params[i].max, v + half);
         if (!(hi > lo)) continue;  // a parameter pinned at a degenerate range stays fixed
         ev.free_index.push_back(static_cast<int>(i));
         problem.lower.push_back(lo);

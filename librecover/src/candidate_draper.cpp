@@ -6,7 +6,14 @@ namespace drape::recover {
 
 CandidateDraper::CandidateDraper(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
                                  const RecoverOptions& options)
-    : model_(model), shaped_(shaped), pose_(pose), options_(options) {}
+    : model_(model), shaped_(shaped), pose_(pose), options_(options) {
+    // The garments are draped with the body standing where the dressing puts it (no root
+    // translation): a fitted root translation is a rigid offset of the whole scene, and
+    // moving the body by it during the drape would leave the cloth behind. The offset is
+    // added back to everything handed out.
+    offset_ = pose_.translation;
+    pose_.translation.setZero();
+}
 
 CandidateDraper::~CandidateDraper() = default;
 
@@ -25,6 +32,8 @@ garment::DressOutfitSummary CandidateDraper::dress(const std::vector<garment::Ga
     const garment::DressOutfitOptions o = options_at(options_.search_edge_cm, true);
     const auto s = garment::dress_outfit(model_, shaped_, pose_, requests_, o, outfit_);
     pose_ = outfit_.pose;  // candidates are draped in the pose the arms were cleared to
+    shifted_ = outfit_;
+    shift(shifted_);
     if (s.termination != garment::DressOutfitTermination::draped) return s;
     // One fast re-drape per garment (morphed rest shape, warm start from this drape), copied
     // once per worker: each worker owns its simulators.
@@ -49,12 +58,12 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
     const garment::SizingDrapeResult r = d.evaluate(sizing);  // InvalidInput: the template or the morph refuses it
     DrapedCandidate c;
     c.mesh = d.mesh();
-    c.positions = r.positions;
+    c.positions = r.positions.rowwise() + offset_.transpose();
     c.usable = r.usable(d.options().drape);
     for (size_t i = 0; i < outfit_.meshes.size(); ++i) {
         if (static_cast<int>(i) == index) continue;
-        c.other_meshes.push_back(outfit_.meshes[i]);
-        c.other_positions.push_back(outfit_.positions[i]);
+        c.other_meshes.push_back(shifted_.meshes[i]);
+        c.other_positions.push_back(shifted_.positions[i]);
         c.other_index.push_back(static_cast<int>(i));
     }
     return c;
@@ -72,7 +81,15 @@ garment::DressOutfitSummary CandidateDraper::final_drape(const std::vector<garme
                                                          garment::DressedOutfit& out) const {
     garment::DressOutfitOptions o = options_at(options_.final_edge_cm, false);
     o.drape.max_steps = std::max(600, options_.max_drape_steps);
-    return garment::dress_outfit(model_, shaped_, pose_, requests, o, out);
+    const auto s = garment::dress_outfit(model_, shaped_, pose_, requests, o, out);
+    shift(out);
+    return s;
+}
+
+void CandidateDraper::shift(garment::DressedOutfit& outfit) const {
+    for (auto& p : outfit.positions) p = p.rowwise() + offset_.transpose();
+    outfit.body_vertices = outfit.body_vertices.rowwise() + offset_.transpose();
+    outfit.pose.translation += offset_;
 }
 
 }  // namespace drape::recover

@@ -32,7 +32,8 @@ class CandidateDraper {
 
     /// The first drape of the outfit at the search resolution (the initial registration).
     garment::DressOutfitSummary dress(const std::vector<garment::GarmentRequest>& requests);
-    const garment::DressedOutfit& outfit() const { return outfit_; }
+    /// The first drape, in the photo's frame (the fitted root translation applied).
+    const garment::DressedOutfit& outfit() const { return shifted_; }
 
     /// Garment `index` made with `sizing` and `material`: its fast re-drape
     /// (garment::SizingDrape: the search mesh morphed to the sizing, warm-started from the
@@ -53,13 +54,16 @@ class CandidateDraper {
 
   private:
     garment::DressOutfitOptions options_at(double edge_cm, bool clear_arms) const;
+    void shift(garment::DressedOutfit& outfit) const;  ///< adds offset_ to positions, body and pose
 
     const body::BodyModel& model_;
     const body::ShapedBody& shaped_;
     body::Pose pose_;
     RecoverOptions options_;
     std::vector<garment::GarmentRequest> requests_;
-    garment::DressedOutfit outfit_;
+    garment::DressedOutfit outfit_;   ///< the first drape, at the origin (as simulated)
+    garment::DressedOutfit shifted_;  ///< the same, in the photo's frame
+    Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();  ///< the fitted root translation
     /// [worker][garment]: each worker's own re-drapes (SizingDrape copies).
     mutable std::vector<std::vector<garment::SizingDrape>> drapers_;
 };

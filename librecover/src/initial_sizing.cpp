@@ -121,4 +121,18 @@ std::vector<bool> free_parameters(GarmentChoice choice) {
     return free;
 }
 
+std::vector<double> lower_bounds(const garment::GarmentSizing& start) {
+    const auto params = garment::sizing_parameters(start.type);
+    const auto values = garment::sizing_values(start);
+    std::vector<double> out(params.size(), std::nan(""));
+    const bool pants = start.type == garment::GarmentType::pants;
+    for (size_t i = 0; i < params.size(); ++i) {
+        const std::string& n = params[i].name;
+        const bool girth = (start.type == garment::GarmentType::skirt && n == "l1") || n == "w1" || n == "w2" ||
+                           (pants && (n == "w3" || n == "w4")) || n == "bodice.w1" || n == "bodice.w2";
+        if (girth) out[i] = values[i];
+    }
+    return out;
+}
+
 }  // namespace drape::recover

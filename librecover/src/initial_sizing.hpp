@@ -27,4 +27,10 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
 /// h3, a tank's sleeve length (0), a dress's skirt waist (tied to the bodice).
 std::vector<bool> free_parameters(GarmentChoice choice);
 
+/// Lower bounds of the sizing search (sizing_parameters order, NaN = none): the girths the
+/// body needs (a skirt's or pants' waist and hip, a leg's knee and ankle, a top's panel width
+/// and sleeve opening) stay at least those of the starting sizing, which the template's
+/// proposal made from the fitted body plus ease: narrower, the garment would not go on.
+std::vector<double> lower_bounds(const garment::GarmentSizing& start);
+
 }  // namespace drape::recover

@@ -353,6 +353,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                 so.threads = options.threads;
                 so.seed = options.seed + static_cast<unsigned>(101 * round + i);
                 so.free = free_parameters(g.choice);
+                so.lower_bounds = lower_bounds(g.initial_sizing);
                 so.constrain = garment::tie_dress_waist;
                 so.box_fraction = round == 1 ? 0.15 : 0.07;
                 so.on_progress = [&](const garment::SizingSearchProgress& p) {
@@ -367,7 +368,9 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                     [&](const garment::GarmentSizing& candidate, int worker) {
                         const DrapedCandidate c = draper.drape(gi, candidate, g.material, worker);
                         ++evaluations;
-                        return scorers[i].score(view.candidate(draper, gi, c, worker)).energy_px2;
+                        const double e = scorers[i].score(view.candidate(draper, gi, c, worker)).energy_px2;
+                        // A re-drape that did not settle cleanly (slid, caught) is worse than its outline.
+                        return c.usable ? e : 2.0 * e;
                     },
                     so);
                 if (ss.termination == garment::SizingSearchTermination::cancelled) throw Cancelled{};

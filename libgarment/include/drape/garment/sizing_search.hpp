@@ -39,6 +39,11 @@ struct SizingSearchOptions {
     double box_fraction = 0.2;
     /// Per parameter (sizing_parameters order; empty = all free): false keeps the start's value.
     std::vector<bool> free;
+    /// Per parameter (sizing_parameters order; empty = none): a lower bound of the search
+    /// box in the parameter's unit, NaN for none. E.g. a girth that must not fall below the
+    /// body's (the garment would not go on). The box is [max(its lower end, bound), upper end];
+    /// a start below the bound is raised to it.
+    std::vector<double> lower_bounds;
     /// Applied to every candidate before it is evaluated, e.g. a dress's skirt waist tied to
     /// the bodice (tie_dress_waist). Empty: none.
     std::function<GarmentSizing(const GarmentSizing&)> constrain;
