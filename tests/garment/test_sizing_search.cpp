@@ -120,6 +120,21 @@ TEST_CASE("the sizing search keeps fixed parameters, ties a dress's waist, stops
     for (size_t i = 0; i < v0.size(); ++i)
         if (i != 1 && i != 4) CHECK(v1[i] == v0[i]);
 
+    // A lower bound keeps a girth from shrinking below it, even where the bowl's minimum is.
+    SizingSearchOptions lb = o;
+    lb.free.assign(sizing_parameters(GarmentType::dress).size(), false);
+    lb.free[2] = true;  // bodice.w2
+    lb.lower_bounds.assign(lb.free.size(), std::nan(""));
+    lb.lower_bounds[2] = start.dress.bodice.w2;
+    GarmentSizing narrower = start;
+    narrower.dress.bodice.w2 -= 6;
+    const auto bounded = search_sizing(start, [&](const GarmentSizing& g, int) { return bowl(g, narrower); }, lb);
+    CHECK(bounded.best.dress.bodice.w2 >= start.dress.bodice.w2);
+    CHECK(bounded.best.dress.bodice.w2 < start.dress.bodice.w2 + 0.5);
+    lb.lower_bounds.resize(2);
+    CHECK_THROWS_WITH(search_sizing(start, [](const GarmentSizing&, int) { return 0.0; }, lb),
+                      Catch::Contains("lower_bounds has 2 entries"));
+
     int calls = 0;
     o.on_progress = [&](const SizingSearchProgress& p) { return ++calls, p.generation < 1; };
     const auto c = search_sizing(start, [&](const GarmentSizing& g, int) { return bowl(g, target); }, o);
