@@ -101,10 +101,9 @@ void check_pair_derivatives(Kind kind, const Mat34& x, const SelfContactParams& 
     pair_energy(kind, x, params, nullptr, &gauss_newton, HessianMode::gauss_newton);
     Eigen::SelfAdjointEigenSolver<Matrix12d> eig(projected);
     CHECK(eig.eigenvalues().minCoeff() > -1e-8 * std::max(1.0, projected.norm()));
-    const double gn = g.squaredNorm() / (params.stiffness_n_per_m *
-                                         std::pow(params.thickness_m -
-                                                      std::sqrt(pair_distance_squared(kind, x)),
-                                                  2));
+    // Gauss–Newton: ψ''(d) ∇d ∇dᵀ, and g = ψ'(d) ∇d.
+    const ContactPotential c = contact_potential(std::sqrt(pair_distance_squared(kind, x)), params);
+    const double gn = c.d2psi * g.squaredNorm() / (c.dpsi * c.dpsi);
     CHECK(gauss_newton.trace() == Approx(gn).epsilon(1e-9));
 }
 
@@ -263,6 +262,7 @@ TEST_CASE("self-contact penalty: finite-difference gradient and Hessian in every
     SelfContactParams params;
     params.thickness_m = 0.005;
     params.stiffness_n_per_m = 2000;
+    params.inner_fraction = 0.2;  // the inner barrier on: d in [0.5, 1) mm tests it
     std::string why;
     REQUIRE(params.is_valid(&why));
     std::mt19937 rng(11);
@@ -313,6 +313,48 @@ TEST_CASE("self-contact penalty: finite-difference gradient and Hessian in every
     CHECK(pair_energy(Kind::edge_edge, x, params, &g, &hess) == 0);
     CHECK(g.norm() == 0);
     CHECK(hess.norm() == 0);
+}
+
+TEST_CASE("self-contact penalty: the inner barrier holds against any force", "[cloth][self_contact]") {
+    SelfContactParams params;
+    params.thickness_m = 0.005;
+    params.stiffness_n_per_m = 2000;
+    CHECK(params.inner_fraction == 0);  // off by default (not yet evaluated on the garments)
+    params.inner_fraction = 0.2;
+    const double h = params.thickness_m, k = params.stiffness_n_per_m, dh = params.inner_fraction * h;
+    REQUIRE(dh == Approx(0.001));
+    // Above d̂ the quadratic penalty alone; it pushes back with at most k h.
+    for (double d : {0.0012, 0.003, 0.0049}) {
+        const ContactPotential c = contact_potential(d, params);
+        CHECK(c.psi == Approx(0.5 * k * (h - d) * (h - d)));
+        CHECK(c.dpsi == Approx(-k * (h - d)));
+        CHECK(c.d2psi == k);
+    }
+    // C² at d̂: value and derivatives agree from both sides.
+    const ContactPotential below = contact_potential(dh * (1 - 1e-7), params), at = contact_potential(dh, params);
+    CHECK(below.psi == Approx(at.psi).epsilon(1e-6));
+    CHECK(below.dpsi == Approx(at.dpsi).epsilon(1e-6));
+    CHECK(below.d2psi == Approx(at.d2psi).epsilon(1e-4));
+    // Below d̂ the repulsion grows without bound: 10x, 100x, 1000x the penalty's largest force.
+    CHECK(-contact_potential(1e-4, params).dpsi > 10 * k * h);
+    CHECK(-contact_potential(1e-5, params).dpsi > 100 * k * h);
+    CHECK(-contact_potential(1e-6, params).dpsi > 1000 * k * h);
+    // The energy keeps rising (convex) towards contact.
+    double last = 0;
+    for (double d = 0.001; d > 1e-8; d /= 2) {
+        const ContactPotential c = contact_potential(d, params);
+        CHECK(c.psi > last);
+        CHECK(c.d2psi > 0);
+        last = c.psi;
+    }
+    // Off (inner_fraction 0): the old penalty, k h at most.
+    SelfContactParams off = params;
+    off.inner_fraction = 0;
+    CHECK(contact_potential(1e-6, off).dpsi == Approx(-k * (h - 1e-6)));
+    std::string why;
+    off.inner_fraction = 1.5;
+    CHECK_FALSE(off.is_valid(&why));
+    CHECK(why.find("inner_fraction") != std::string::npos);
 }
 
 TEST_CASE("self-contact broad phase finds exactly the brute-force pairs",
