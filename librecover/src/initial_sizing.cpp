@@ -1,5 +1,6 @@
 #include "initial_sizing.hpp"
 
+#include <drape/core/errors.hpp>
 #include <drape/garment/sizing_proposal.hpp>
 #include <drape/garment/sizing_search.hpp>
 
@@ -79,7 +80,10 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
         case garment::GarmentType::pants: {
             const double length = feature_cm(f.length_px, h, stature);
             if (choice == GarmentChoice::shorts) {
-                g.pants.h1 = std::isfinite(length) ? std::min(length, 60.0) : 45.0;
+                // At least a 12 cm inseam below the crotch depth, so that the front and back
+                // inseams of the pattern still match.
+                g.pants.h1 = std::max(std::isfinite(length) ? std::min(length, 60.0) : 45.0,
+                                      std::max(g.pants.h2, g.pants.h3) + 12.0);
             } else {
                 set_if(g.pants.h1, length);
             }
@@ -104,7 +108,15 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
     }
     g = garment::tie_dress_waist(clamped(g));
     // A top's sleeve must still fit the arm after the length changed.
-    return clamped(garment::fit_top_to_body(g, model, shaped));
+    g = clamped(garment::fit_top_to_body(g, model, shaped));
+    // Features that make a pattern the template refuses (a seam pair of unequal lengths)
+    // fall back to the body's proposal: the search starts from a garment that can be made.
+    try {
+        garment::make_pattern(g);
+    } catch (const InvalidInput&) {
+        return garment::proposed_sizing(template_of(choice), model, shaped, measured);
+    }
+    return g;
 }
 
 std::vector<bool> free_parameters(GarmentChoice choice) {
