@@ -131,18 +131,17 @@ void run_eval_synthetic(const EvalSynthArgs& args) {
                 const std::string file = (scene / "truth.json").string();
                 const garment::GarmentSizing gt = sizing_from_json(type, tg.at("sizing"), file);
                 const cloth::Material gm = material_from_truth(tg.at("material"), file);
-                const double sa = recover::sizing_accuracy(it->sizing, gt);
-                const double ma = recover::material_accuracy(it->material, gm);
-                const double be = recover::bending_log_error(it->material, gm);
-                const double ca = recover::curvature_accuracy(it->mean_curvature_per_m,
-                                                              tg.at("mean_curvature_per_m").get<double>());
+                const recover::GarmentScore sc =
+                    recover::score_garment(it->sizing, it->initial_sizing, it->material, it->mean_curvature_per_m, gt, gm,
+                                           tg.at("mean_curvature_per_m").get<double>());
+                const double sa = sc.sizing, ma = sc.material, be = sc.bending_log10, ca = sc.curvature;
                 sizing.push_back(sa);
                 material.push_back(ma);
                 bend_err.push_back(be);
                 curvature.push_back(ca);
                 gs.push_back({{"type", garment::garment_type_name(type)},
                               {"sizing_accuracy", sa},
-                              {"initial_sizing_accuracy", recover::sizing_accuracy(it->initial_sizing, gt)},
+                              {"initial_sizing_accuracy", sc.initial_sizing},
                               {"material_accuracy", ma},
                               {"bending_log10_error", be},
                               {"curvature_accuracy", ca},
@@ -261,12 +260,7 @@ void run_eval_photos(const EvalPhotosArgs& args) {
             std::cout << " | " << (g.counted ? fixed(g.iou, 3) : std::string("–"));
             if (g.counted) gj[recover::group_name(g.group)] = g.iou;
         }
-        // The body fit's joint error: mean distance of the fitted 2D joints to the marked ones,
-        // % of the skeleton's body height.
-        double err = 0;
-        for (int j = 0; j < 14; ++j)
-            err += (result.fit.joints_2d.row(j).transpose() - in.joints.px[static_cast<size_t>(j)]).norm();
-        err = 100.0 * err / 14.0 / in.joints.body_height_px();
+        const double err = result.joint_error_percent;
         joint_err.push_back(err);
         std::cout << " | " << fixed(err, 2) << " | " << (ok ? "yes" : "no") << " | " << fixed(secs, 0) << " |\n"
                   << std::flush;

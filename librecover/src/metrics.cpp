@@ -41,6 +41,18 @@ double bending_log_error(const cloth::Material& est, const cloth::Material& gt) 
 
 double curvature_accuracy(double k_est, double k_gt) { return relative_accuracy(k_est, k_gt); }
 
+GarmentScore score_garment(const garment::GarmentSizing& est, const garment::GarmentSizing& est_initial,
+                           const cloth::Material& est_material, double est_k, const garment::GarmentSizing& gt,
+                           const cloth::Material& gt_material, double gt_k) {
+    GarmentScore s;
+    s.sizing = sizing_accuracy(est, gt);
+    s.initial_sizing = sizing_accuracy(est_initial, gt);
+    s.material = material_accuracy(est_material, gt_material);
+    s.bending_log10 = bending_log_error(est_material, gt_material);
+    s.curvature = curvature_accuracy(est_k, gt_k);
+    return s;
+}
+
 const std::vector<int>& group_ids(GarmentGroup g) {
     static const std::vector<int> upper = {5, 6, 38, 48, 49, 51, 54}, lower = {25, 27, 31, 40, 42}, dress = {14};
     switch (g) {

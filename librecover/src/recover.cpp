@@ -234,6 +234,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
         const body::FitSummary fit = body::fit_body(model, fit_in, fit_options, out.fit);
         summary.seconds_fit = since(ts);
         if (!fit.usable()) return finish(RecoverTermination::body_fit_failed, fit.brief_report());
+        out.joint_error_percent = 100.0 * fit.mean_joint_error_px / in.joints.body_height_px();
         out.shaped = body::shape_from_coefficients(model, out.fit.coefficients);
         const body::BodyMeasurements measured = body::measure_body(model, out.shaped.vertices);
 

@@ -32,6 +32,19 @@ double bending_log_error(const cloth::Material& est, const cloth::Material& gt);
 /// max(0, 1 − |K_est − K_gt| / K_gt).
 double curvature_accuracy(double k_est, double k_gt);
 
+/// One recovered garment against its truth, by the measures above.
+struct GarmentScore {
+    double sizing = 0;          ///< sizing_accuracy
+    double initial_sizing = 0;  ///< sizing_accuracy of the starting sizing (what the search added)
+    double material = 0;        ///< material_accuracy
+    double bending_log10 = 0;   ///< bending_log_error
+    double curvature = 0;       ///< curvature_accuracy
+};
+/// \throw drape::InvalidInput if the sizing types differ.
+GarmentScore score_garment(const garment::GarmentSizing& est, const garment::GarmentSizing& est_initial,
+                           const cloth::Material& est_material, double est_k, const garment::GarmentSizing& gt,
+                           const cloth::Material& gt_material, double gt_k);
+
 /// The garment groups of the photo evaluation (labels.txt ids).
 enum class GarmentGroup { upper, lower, dress };
 /// upper = blouse, bodysuit, shirt, sweater, sweatshirt, t-shirt, top (5 6 38 48 49 51 54);

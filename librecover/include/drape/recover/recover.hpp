@@ -140,6 +140,9 @@ struct RecoveryResult {
     vision::Segmentation segmentation;
     std::vector<vision::GarmentResult> seen;    ///< libvision's description of every garment class
     body::BodyFit fit;                          ///< pose, semantic shape, camera
+    /// The body fit's mean distance of the fitted joints to the given ones, % of the
+    /// skeleton's body height (vision::Joints::body_height_px).
+    double joint_error_percent = 0;
     body::ShapedBody shaped;
     Eigen::MatrixXd body_vertices;              ///< posed as draped (#B x 3, world metres)
     body::Pose pose;                            ///< the pose draped in (arms cleared if needed)
