@@ -3,8 +3,8 @@
 // The anchor scene of issue 3 (a 1 m square dropped on a 0.5 m sphere), timed, with the
 // rest-state figures to compare against ArcSim 0.3.1 (docs/cloth.md, docs/benchmarks.md).
 #include "commands.hpp"
-#include "json_io.hpp"
-#include "material_arg.hpp"
+#include <drape/io/json_io.hpp>
+#include <drape/io/material_arg.hpp>
 
 #include <drape/cloth/material.hpp>
 #include <drape/fixtures/cloth_scenes.hpp>
@@ -22,6 +22,8 @@
 #include <optional>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

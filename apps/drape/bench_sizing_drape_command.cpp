@@ -7,8 +7,8 @@
 // iterations, settled rate) and, for the first N of them, the vertex distance to a full
 // fresh drape (dressing + simulation) of the same morphed mesh (docs/benchmarks.md).
 #include "commands.hpp"
-#include "json_io.hpp"
-#include "material_arg.hpp"
+#include <drape/io/json_io.hpp>
+#include <drape/io/material_arg.hpp>
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/pose.hpp>
@@ -27,6 +27,8 @@
 #include <sstream>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

@@ -1,7 +1,7 @@
 // drape body --params P.json [--pose POSE.json] --out body.glb [--obj body.obj] [--measure]
-#include "body_json.hpp"
+#include <drape/io/body_json.hpp>
 #include "commands.hpp"
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/model_io.hpp>
@@ -14,6 +14,8 @@
 #include <memory>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

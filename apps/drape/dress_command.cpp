@@ -4,12 +4,12 @@
 // drape eval-dress [--garments LIST] [--poses LIST] [--bodies LIST] [--edge CM] [--material NAME|PATH]
 //             [--materials DIR] [--ansur N [--seed S] [--ansur-dir DIR]] [--docs FILE] --out DIR
 //             (the templates x bodies x poses table; --ansur: bodies sampled from the ANSUR II records)
-#include "body_json.hpp"
+#include <drape/io/body_json.hpp>
 #include "commands.hpp"
-#include "garment_json.hpp"
-#include "image_io.hpp"
-#include "json_io.hpp"
-#include "material_arg.hpp"
+#include <drape/io/garment_json.hpp>
+#include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
+#include <drape/io/material_arg.hpp>
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/pose.hpp>
@@ -55,6 +55,8 @@
 #include <sstream>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

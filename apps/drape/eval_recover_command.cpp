@@ -1,9 +1,9 @@
 // drape eval-synthetic / drape eval-photos: recovery measured against known answers
 // (docs/recovery.md, "Accuracy"), with the metrics of librecover/metrics.hpp.
 #include "commands.hpp"
-#include "garment_json.hpp"
+#include <drape/io/garment_json.hpp>
 #include "interrupt.hpp"
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 #include "recover_io.hpp"
 
 #include <drape/core/errors.hpp>
@@ -25,6 +25,8 @@
 
 namespace drape::app {
 
+using namespace io;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -40,22 +42,6 @@ double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-cloth::Material material_from_truth(const nlohmann::json& j, const std::string& file) {
-    cloth::Material m;
-    try {
-        m.bending_scale = j.at("bending_scale").get<double>();
-        m.stretching_scale = j.at("stretching_scale").get<double>();
-        m.density_kg_per_m2 = j.at("density").get<double>();
-        for (size_t r = 0; r < 6; ++r)
-            for (size_t c = 0; c < 4; ++c) m.stretching_n_per_m[r][c] = j.at("stretching").at(r).at(c).get<double>();
-        for (size_t r = 0; r < 3; ++r)
-            for (size_t c = 0; c < 5; ++c) m.bending_n_m[r][c] = j.at("bending").at(r).at(c).get<double>();
-    } catch (const nlohmann::json::exception& e) {
-        throw InvalidInput(file + ": garment material: " + e.what());
-    }
-    return m;
 }
 
 struct EvalSynthArgs {
@@ -121,7 +107,8 @@ void run_eval_synthetic(const EvalSynthArgs& args) {
             seconds.push_back(secs);
             if (!args.save_dir.empty())
                 write_recovery(fs::path(args.save_dir) / (scene.filename().string() + "_" + light),
-                               (scene / ("image_" + light + ".png")).string(), model, in, options, result, s);
+                               (scene / ("image_" + light + ".png")).string(), model, in, options, result, s,
+                               [] { return !interrupted(); });
             nlohmann::json gs = nlohmann::json::array();
             for (const auto& tg : truth.at("garments")) {
                 const garment::GarmentType type = garment::garment_type_from_name(tg.at("type").get<std::string>());
@@ -130,7 +117,7 @@ void run_eval_synthetic(const EvalSynthArgs& args) {
                 if (it == result.garments.end()) continue;
                 const std::string file = (scene / "truth.json").string();
                 const garment::GarmentSizing gt = sizing_from_json(type, tg.at("sizing"), file);
-                const cloth::Material gm = material_from_truth(tg.at("material"), file);
+                const cloth::Material gm = material_from_json(tg.at("material"), file);
                 const recover::GarmentScore sc =
                     recover::score_garment(it->sizing, it->initial_sizing, it->material, it->mean_curvature_per_m, gt, gm,
                                            tg.at("mean_curvature_per_m").get<double>());
@@ -251,7 +238,7 @@ void run_eval_photos(const EvalPhotosArgs& args) {
         seconds.push_back(secs);
         if (!args.save_dir.empty())
             write_recovery(fs::path(args.save_dir) / name, (dir / "images" / (name + ".jpg")).string(), model, in,
-                           options, result, s);
+                           options, result, s, [] { return !interrupted(); });
         const auto groups = recover::group_ious(result.mask, truth);
         std::cout << "| " << name;
         nlohmann::json gj = nlohmann::json::object();

@@ -6,9 +6,9 @@
 // mean IoU per garment against the hand labels, garment-type accuracy and time
 // (docs/vision.md, "Evaluation").
 #include "commands.hpp"
-#include "image_io.hpp"
-#include "json_io.hpp"
-#include "vision_json.hpp"
+#include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
+#include <drape/io/vision_json.hpp>
 
 #include <drape/core/errors.hpp>
 #include <drape/vision/classify_garment.hpp>
@@ -35,6 +35,8 @@
 #include <utility>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

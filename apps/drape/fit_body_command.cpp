@@ -1,10 +1,10 @@
 // drape fit-body IMAGE --joints J.json (--silhouette S.png [--skin K.png] | --labels L.png)
 //                [--height M] [--gender female|male] [--focal PX] --out DIR
-#include "body_json.hpp"
+#include <drape/io/body_json.hpp>
 #include "commands.hpp"
-#include "image_io.hpp"
-#include "joints_json.hpp"
-#include "json_io.hpp"
+#include <drape/io/image_io.hpp>
+#include <drape/io/joints_json.hpp>
+#include <drape/io/json_io.hpp>
 
 #include <drape/body/fit_body.hpp>
 #include <drape/body/model_io.hpp>
@@ -18,6 +18,8 @@
 #include <optional>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

@@ -1,9 +1,9 @@
 // drape pattern --garment skirt|pants|tshirt|dress --sizing G.json|auto [--body P.json]
 //               [--edge CM] --out DIR
-#include "body_json.hpp"
+#include <drape/io/body_json.hpp>
 #include "commands.hpp"
-#include "garment_json.hpp"
-#include "json_io.hpp"
+#include <drape/io/garment_json.hpp>
+#include <drape/io/json_io.hpp>
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/shape_body.hpp>
@@ -24,6 +24,8 @@
 #include <sstream>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

@@ -18,6 +18,8 @@
 
 namespace drape::app {
 
+using namespace io;
+
 namespace {
 
 struct RecoverArgs {
@@ -49,7 +51,8 @@ void run_recover(const RecoverArgs& args) {
     if (s.termination == recover::RecoverTermination::no_garment)
         throw InvalidInput("no garment found in '" + args.image + "': " + s.message);
     if (s.termination != recover::RecoverTermination::recovered) throw std::runtime_error(s.brief_report());
-    write_recovery(args.out, args.image, model, in, options, result, s);
+    if (!write_recovery(args.out, args.image, model, in, options, result, s, [] { return !interrupted(); }))
+        throw CommandExit{130, "recover: cancelled; '" + args.out + "' is unchanged"};
     std::cout << "drape recover: " << result.garments.size() << " garment(s) in " << args.out << "\n";
     for (const auto& g : result.garments)
         std::cout << "  " << recover::garment_choice_name(g.choice) << ": silhouette " << std::fixed

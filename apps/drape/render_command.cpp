@@ -3,10 +3,10 @@
 //              [--camera auto|fitted|front|camera.json] [--photo P.jpg] [--width W --height H]
 //              [--samples N] [--threads N] [--stage auto|none|floor|cove] --out render.png
 //              [--labels labels.png]
-#include "body_json.hpp"
+#include <drape/io/body_json.hpp>
 #include "commands.hpp"
-#include "image_io.hpp"
-#include "json_io.hpp"
+#include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/model_io.hpp>
@@ -26,6 +26,8 @@
 #include <sstream>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

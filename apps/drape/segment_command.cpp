@@ -1,9 +1,9 @@
 // drape segment IMAGE --joints J.json [--strokes S.png] [--palette P.json] [--hint TYPE] [--height M] --out DIR
 // drape strokes LABELS.png --out S.png [--style medial|dashes|dots|sloppy] [--seed N] [--colour] [--palette P.json]
 #include "commands.hpp"
-#include "image_io.hpp"
-#include "json_io.hpp"
-#include "vision_json.hpp"
+#include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
+#include <drape/io/vision_json.hpp>
 
 #include <drape/core/errors.hpp>
 #include <drape/vision/garment_result.hpp>
@@ -18,6 +18,8 @@
 #include <optional>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

@@ -3,8 +3,8 @@
 //             [--samples N] [--print-check] --out DIR
 // drape synth --suite SUITE.json [--only NAME,...] [--skip-existing] [--print-check] --out DIR
 #include "commands.hpp"
-#include "image_io.hpp"
-#include "json_io.hpp"
+#include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
 #include "synth_scene.hpp"
 
 #include <drape/core/atomic_file.hpp>
@@ -23,6 +23,8 @@
 #include <sstream>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

@@ -1,9 +1,9 @@
 #include "synth_scene.hpp"
 
-#include "body_json.hpp"
-#include "garment_json.hpp"
-#include "image_io.hpp"
-#include "json_io.hpp"
+#include <drape/io/body_json.hpp>
+#include <drape/io/garment_json.hpp>
+#include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
 
 #include <drape/body/camera.hpp>
 #include <drape/core/errors.hpp>
@@ -19,6 +19,8 @@
 #include <vector>
 
 namespace drape::app {
+
+using namespace io;
 
 namespace {
 

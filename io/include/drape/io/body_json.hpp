@@ -10,7 +10,7 @@
 
 #include <string>
 
-namespace drape::app {
+namespace drape::io {
 
 /// P.json: any subset of "gender" and the semantic keys (kSemanticKeys).
 body::SemanticRequest semantic_request_from_json(const nlohmann::json& j, const std::string& file);
@@ -28,4 +28,4 @@ nlohmann::json to_json(const body::Pose& pose);
 /// frame); saved alone it is a `drape render --camera FILE` camera.
 nlohmann::json to_json(const body::Camera& camera);
 
-}  // namespace drape::app
+}  // namespace drape::io

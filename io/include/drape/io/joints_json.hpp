@@ -1,4 +1,4 @@
-// The 14-joint file of ../shared/data/photos/joints (app layer), read once for every command:
+// The 14-joint file of ../shared/data/photos/joints, read once for every command:
 // {"joints": [[x, y] x 14], "joint_names": [...], "image_size": [w, h], "pixel_origin": ...}.
 #pragma once
 
@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-namespace drape::app {
+namespace drape::io {
 
 /// How the file's pixel coordinates relate to the image frame used by libbody and libvision
 /// (origin at the image's top-left corner, pixel centres at +0.5).
@@ -30,4 +30,4 @@ struct JointsFile {
 /// consistent. \throw drape::InvalidInput naming the file, field and value; IoError.
 JointsFile read_joints_file(const std::filesystem::path& path, int width, int height);
 
-}  // namespace drape::app
+}  // namespace drape::io

@@ -1,4 +1,4 @@
-// Images in the app layer (OpenCV stays here; the libraries see drape::body::Mask):
+// Image files for the CLI and the C API (drape::io; the estimation libraries see drape::body::Mask):
 // photos with their EXIF orientation applied, binary masks and label maps from PNG,
 // atomic PNG writing and the fit overlay.
 #pragma once
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace drape::app {
+namespace drape::io {
 
 /// Reads a photo as 8-bit BGR, rotated upright by its EXIF orientation (cv::IMREAD_COLOR).
 /// \throw drape::IoError naming the file if it is missing or not a decodable image.
@@ -51,4 +51,4 @@ cv::Mat draw_fit_overlay(const cv::Mat& photo, const body::Mask& body,
                          const Eigen::Matrix<double, body::kImageJointCount, 2>& fitted_px,
                          const Eigen::Matrix<double, body::kImageJointCount, 2>& input_px);
 
-}  // namespace drape::app
+}  // namespace drape::io

@@ -1,14 +1,14 @@
-#include "vision_json.hpp"
+#include <drape/io/vision_json.hpp>
 
-#include "joints_json.hpp"
+#include <drape/io/joints_json.hpp>
 
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 
 #include <drape/core/errors.hpp>
 
 #include <cmath>
 
-namespace drape::app {
+namespace drape::io {
 
 vision::Joints read_vision_joints(const std::filesystem::path& path, int width, int height,
                                   double* shift_out) {
@@ -139,4 +139,4 @@ vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, con
     return p;
 }
 
-}  // namespace drape::app
+}  // namespace drape::io

@@ -1,4 +1,4 @@
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace drape::app {
+namespace drape::io {
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -48,4 +48,4 @@ void reject_unknown_keys(const nlohmann::json& j, const std::initializer_list<st
     }
 }
 
-}  // namespace drape::app
+}  // namespace drape::io

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace drape::app {
+namespace drape::io {
 
 /// Reads a 14-joint file (../shared/data/photos/joints format): {"joints": [[x, y] x 14],
 /// optional "joint_names" (must be the Fashionista order), "image_size" [w, h] (must match
@@ -46,4 +46,4 @@ vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, con
 /// Creates `dir` (and parents). \throw drape::IoError when it cannot.
 void make_output_dir(const std::filesystem::path& dir);
 
-}  // namespace drape::app
+}  // namespace drape::io

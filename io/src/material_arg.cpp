@@ -1,10 +1,10 @@
-#include "material_arg.hpp"
+#include <drape/io/material_arg.hpp>
 
 #include <drape/core/errors.hpp>
 
 #include <filesystem>
 
-namespace drape::app {
+namespace drape::io {
 
 cloth::Material load_material_arg(const std::string& name_or_path, const std::string& materials_dir,
                                   std::string* source) {
@@ -28,4 +28,4 @@ cloth::Material load_material_arg(const std::string& name_or_path, const std::st
     return cloth::builtin_material(name_or_path);
 }
 
-}  // namespace drape::app
+}  // namespace drape::io

@@ -1,4 +1,4 @@
-// JSON forms of the garment sizing parameters G (app layer), keyed by the paper's names:
+// JSON forms of the garment sizing parameters G, keyed by the paper's names:
 // skirt {l1, r1, r2, alpha}; pants {w1, w2, w3, w4, h1, h2, h3}; tshirt {r, w1, w2, h1,
 // h2, l1}; dress {"bodice": {tshirt keys}, "skirt": {skirt keys}}. Centimetres, degrees.
 #pragma once
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace drape::app {
+namespace drape::io {
 
 // The vocabulary is libgarment's (drape/garment/garment_type.hpp, garment_sizing.hpp,
 // sizing_proposal.hpp). These using-declarations keep the app's unqualified names (synth).
@@ -38,10 +38,15 @@ nlohmann::json to_json(const GarmentSizing& sizing);
 /// A garment's fabric as truth.json and result.json hold it: the scales, the base fabric's
 /// name, its unscaled tables (SI, ArcSim layout) and density.
 nlohmann::json material_to_json(const cloth::Material& material, const std::string& base_fabric);
+/// The inverse of material_to_json (the base fabric's name goes to `*base_fabric` if given).
+/// \throw InvalidInput naming the file and the field for a missing or non-finite number, a
+/// table of the wrong shape, or a scale or density that is not positive.
+cloth::Material material_from_json(const nlohmann::json& j, const std::string& file,
+                                   std::string* base_fabric = nullptr);
 
 /// The garments of `--garment` ("skirt", "tshirt+pants", ...: template names joined by '+')
 /// in layering order, inner first (garment::outfit_layers).
 /// \throw InvalidInput naming the option and its value for an unknown name or outfit.
 std::vector<GarmentType> outfit_from_spec(const std::string& spec);
 
-}  // namespace drape::app
+}  // namespace drape::io

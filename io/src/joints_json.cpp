@@ -1,13 +1,13 @@
-#include "joints_json.hpp"
+#include <drape/io/joints_json.hpp>
 
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 
 #include <drape/core/errors.hpp>
 
 #include <cmath>
 #include <string>
 
-namespace drape::app {
+namespace drape::io {
 
 double origin_offset(PixelOrigin o) {
     switch (o) {
@@ -87,4 +87,4 @@ JointsFile read_joints_file(const std::filesystem::path& path, int width, int he
     return out;
 }
 
-}  // namespace drape::app
+}  // namespace drape::io

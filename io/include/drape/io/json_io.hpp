@@ -1,4 +1,4 @@
-// JSON files in the app layer: reading with errors that name the file and the field.
+// JSON files (drape::io, shared by the CLI and the C API): reading with errors that name the file and the field.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-namespace drape::app {
+namespace drape::io {
 
 /// Parses a JSON file. \throw drape::IoError (unreadable), drape::InvalidInput (bad JSON,
 /// with the file name and the parser's position).
@@ -25,4 +25,4 @@ std::optional<double> optional_number(const nlohmann::json& j, const std::string
 void reject_unknown_keys(const nlohmann::json& j, const std::initializer_list<std::string>& allowed,
                          const std::string& file);
 
-}  // namespace drape::app
+}  // namespace drape::io

@@ -1,12 +1,14 @@
-#include "garment_json.hpp"
+#include <drape/io/garment_json.hpp>
 
 #include <drape/garment/sizing_proposal.hpp>
 
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 
 #include <drape/core/errors.hpp>
 
-namespace drape::app {
+#include <cmath>
+
+namespace drape::io {
 
 namespace {
 
@@ -102,4 +104,58 @@ nlohmann::json material_to_json(const cloth::Material& m, const std::string& bas
             {"density", m.density_kg_per_m2}};
 }
 
-}  // namespace drape::app
+namespace {
+
+double finite_number(const nlohmann::json& j, const std::string& file, const std::string& field) {
+    if (!j.is_number() || !std::isfinite(j.get<double>()))
+        throw InvalidInput(file + ": material field '" + field + "' must be a finite number, got " + j.dump());
+    return j.get<double>();
+}
+
+template <size_t R, size_t C>
+void read_table(const nlohmann::json& j, const std::string& key, const std::string& file,
+                std::array<std::array<double, C>, R>& table) {
+    if (!j.contains(key)) throw InvalidInput(file + ": material has no field '" + key + "'");
+    const nlohmann::json& t = j.at(key);
+    if (!t.is_array() || t.size() != R)
+        throw InvalidInput(file + ": material field '" + key + "' must be " + std::to_string(R) + " rows of " +
+                           std::to_string(C) + " numbers");
+    for (size_t r = 0; r < R; ++r) {
+        if (!t[r].is_array() || t[r].size() != C)
+            throw InvalidInput(file + ": material field '" + key + "' row " + std::to_string(r) + " must hold " +
+                               std::to_string(C) + " numbers, got " + t[r].dump());
+        for (size_t c = 0; c < C; ++c)
+            table[r][c] = finite_number(t[r][c], file, key + "[" + std::to_string(r) + "][" + std::to_string(c) + "]");
+    }
+}
+
+}  // namespace
+
+cloth::Material material_from_json(const nlohmann::json& j, const std::string& file, std::string* base_fabric) {
+    if (!j.is_object()) throw InvalidInput(file + ": material must be a JSON object, got " + j.dump());
+    reject_unknown_keys(j, {"bending_scale", "stretching_scale", "base_fabric", "stretching", "bending", "density",
+                            "nearest_fabric", "bending_scale_range"},
+                        file);
+    cloth::Material m;
+    for (const char* key : {"bending_scale", "stretching_scale", "density"}) {
+        if (!j.contains(key)) throw InvalidInput(file + ": material has no field '" + std::string(key) + "'");
+        const double v = finite_number(j.at(key), file, key);
+        if (v <= 0) throw InvalidInput(file + ": material field '" + std::string(key) + "' must be positive, got " + j.at(key).dump());
+    }
+    m.bending_scale = j.at("bending_scale").get<double>();
+    m.stretching_scale = j.at("stretching_scale").get<double>();
+    m.density_kg_per_m2 = j.at("density").get<double>();
+    read_table(j, "stretching", file, m.stretching_n_per_m);
+    read_table(j, "bending", file, m.bending_n_m);
+    if (base_fabric) {
+        *base_fabric = "";
+        if (j.contains("base_fabric")) {
+            if (!j.at("base_fabric").is_string())
+                throw InvalidInput(file + ": material field 'base_fabric' must be a string, got " + j.at("base_fabric").dump());
+            *base_fabric = j.at("base_fabric").get<std::string>();
+        }
+    }
+    return m;
+}
+
+}  // namespace drape::io

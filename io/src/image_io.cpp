@@ -1,4 +1,4 @@
-#include "image_io.hpp"
+#include <drape/io/image_io.hpp>
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
@@ -9,7 +9,7 @@
 
 #include <algorithm>
 
-namespace drape::app {
+namespace drape::io {
 
 namespace {
 
@@ -119,4 +119,4 @@ cv::Mat draw_fit_overlay(const cv::Mat& photo, const body::Mask& body,
     return out;
 }
 
-}  // namespace drape::app
+}  // namespace drape::io

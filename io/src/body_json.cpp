@@ -1,12 +1,12 @@
-#include "body_json.hpp"
+#include <drape/io/body_json.hpp>
 
-#include "json_io.hpp"
+#include <drape/io/json_io.hpp>
 
 #include <drape/core/errors.hpp>
 
 #include <cmath>
 
-namespace drape::app {
+namespace drape::io {
 
 body::SemanticRequest semantic_request_from_json(const nlohmann::json& j, const std::string& file) {
     reject_unknown_keys(j, {"gender", "height_m", "weight_kg", "muscle", "chest_girth_m",
@@ -126,4 +126,4 @@ nlohmann::json to_json(const body::Camera& c) {
     return j;
 }
 
-}  // namespace drape::app
+}  // namespace drape::io

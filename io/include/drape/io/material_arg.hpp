@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace drape::app {
+namespace drape::io {
 
 /// A path (it has an extension or a folder) is loaded as a material file (ours or
 /// ArcSim's); a NAME is looked up as NAME.json in `materials_dir` when that is given and
@@ -16,4 +16,4 @@ namespace drape::app {
 cloth::Material load_material_arg(const std::string& name_or_path, const std::string& materials_dir,
                                   std::string* source = nullptr);
 
-}  // namespace drape::app
+}  // namespace drape::io
