@@ -6,6 +6,7 @@
 #pragma once
 
 #include <drape/garment/garment_sizing.hpp>
+#include <drape/garment/particle_swarm.hpp>
 
 #include <functional>
 #include <string>
@@ -21,19 +22,11 @@ namespace drape::garment {
 using SizingObjective = std::function<double(const GarmentSizing& candidate, int worker)>;
 
 /// After every generation (and once after the initial swarm): return false to stop.
-struct SizingSearchProgress {
-    int generation = 0;        ///< 0 = the initial swarm
-    int generations = 0;       ///< as asked
-    long evaluations = 0;      ///< objective calls so far
-    double best = 0;           ///< best objective so far
-    double seconds = 0;        ///< since the search began
-};
+using SizingSearchProgress = SwarmProgress;
 
-struct SizingSearchOptions {
-    int particles = 40;        ///< swarm size (the paper's 40), >= 2
-    int generations = 8;       ///< PSO generations after the initial swarm, >= 0
-    int threads = 2;           ///< workers evaluating a generation's particles, >= 1
-    unsigned seed = 1;         ///< the swarm's random draws (same seed, same search)
+/// The swarm's settings (particle_swarm.hpp: particles, generations, threads, seed, tolerance,
+/// patience, on_progress; the paper's 40 particles by default) and the search box.
+struct SizingSearchOptions : SwarmOptions {
     /// The search box around the start: each free parameter within ± this fraction of the
     /// template's range (max − min), clipped to the range. > 0.
     double box_fraction = 0.2;
@@ -47,11 +40,6 @@ struct SizingSearchOptions {
     /// Applied to every candidate before it is evaluated, e.g. a dress's skirt waist tied to
     /// the bodice (tie_dress_waist). Empty: none.
     std::function<GarmentSizing(const GarmentSizing&)> constrain;
-    /// Stop when the best objective improved by less than this fraction over the last
-    /// `patience` generations (0 = run every generation).
-    double tolerance = 1e-3;
-    int patience = 3;
-    std::function<bool(const SizingSearchProgress&)> on_progress;
     bool is_valid(std::string* why = nullptr) const;
 };
 
