@@ -23,6 +23,8 @@ bool SizingDrapeOptions::is_valid(std::string* why) const {
     if (!(time_step_s >= 0 && std::isfinite(time_step_s)))
         return fail(drape::detail::concat("SizingDrapeOptions::time_step_s = ", time_step_s, " must be >= 0"));
     if (max_steps < 1) return fail(drape::detail::concat("SizingDrapeOptions::max_steps = ", max_steps, " must be >= 1"));
+    if (body_blend_steps < 1)
+        return fail(drape::detail::concat("SizingDrapeOptions::body_blend_steps = ", body_blend_steps, " must be >= 1"));
     if (min_steps < 0 || min_steps > max_steps)
         return fail(drape::detail::concat("SizingDrapeOptions::min_steps = ", min_steps, " must be in [0, max_steps = ",
                                    max_steps, "]"));
@@ -57,6 +59,7 @@ struct SizingDrape::State {
     GarmentSizing sizing;
     cloth::Material material;
     Eigen::MatrixX3d last_settled;  // simulation vertices; empty until one settled
+    Eigen::MatrixX3d body;          // the body to move to (set_body); empty: the base body
 };
 
 namespace {
@@ -112,7 +115,7 @@ SizingDrape::SizingDrape(const Pattern& pattern, const GarmentSizing& sizing, co
     sim.set_obstacle(*s.body);
     if (!s.welded) sim.set_stitches(s.stitches);
     shared_ = std::move(shared);
-    state_ = std::make_unique<State>(State{std::move(sim), sizing, material, {}});
+    state_ = std::make_unique<State>(State{std::move(sim), sizing, material, {}, {}});
 }
 
 namespace {
@@ -141,7 +144,8 @@ SizingDrape::SizingDrape(const SizingDrape& other) : shared_(other.shared_) {
     cloth::Simulator sim(o.sim.mesh(), o.sim.materials(), o.sim.face_material(), o.sim.options());
     sim.set_obstacle(*o.sim.obstacle());
     if (!shared_->welded) sim.set_stitches(o.sim.stitches());
-    state_ = std::make_unique<State>(State{std::move(sim), o.sizing, o.material, o.last_settled});
+    sim.move_obstacle(shared_->body->positions());
+    state_ = std::make_unique<State>(State{std::move(sim), o.sizing, o.material, o.last_settled, o.body});
 }
 
 SizingDrape& SizingDrape::operator=(const SizingDrape& other) {
@@ -169,12 +173,20 @@ SizingDrapeResult SizingDrape::evaluate() {
     State& st = *state_;
     const SizingDrapeOptions& o = s.options;
     const auto t0 = std::chrono::steady_clock::now();
-    const bool from_last = o.warm_start == SizingDrapeOptions::WarmStart::last_settled && st.last_settled.size() > 0;
+    const bool moved = st.body.rows() > 0;
+    const bool from_last =
+        !moved && o.warm_start == SizingDrapeOptions::WarmStart::last_settled && st.last_settled.size() > 0;
     st.sim.set_positions(from_last ? st.last_settled : s.sim_mesh.positions);
     st.sim.set_velocities(Eigen::MatrixX3d::Zero(st.sim.positions().rows(), 3));
+    st.sim.move_obstacle(s.body->positions());
     const double mass = st.sim.masses().sum();
+    const int blend = moved ? o.body_blend_steps : 0;
     SizingDrapeResult r;
-    for (int k = 0; k < o.max_steps; ++k) {
+    for (int k = 0; k < blend + o.max_steps; ++k) {
+        if (k < blend) {
+            const double t = double(k + 1) / blend;
+            st.sim.move_obstacle((1.0 - t) * s.body->positions() + t * st.body);
+        }
         const cloth::StepSummary step = st.sim.step();
         if (!step.usable()) {
             r.message = drape::detail::concat("step ", k + 1, ": ", step.brief_report());
@@ -183,7 +195,7 @@ SizingDrapeResult SizingDrape::evaluate() {
         ++r.steps;
         r.newton_iterations += step.newton_iterations;
         r.kinetic_energy_j_per_kg = detail::kinetic_energy(st.sim) / mass;
-        if (k + 1 >= o.min_steps && r.kinetic_energy_j_per_kg < o.settled_kinetic_energy_j_per_kg) {
+        if (k + 1 >= blend + o.min_steps && r.kinetic_energy_j_per_kg < o.settled_kinetic_energy_j_per_kg) {
             r.converged = true;
             break;
         }
@@ -208,6 +220,14 @@ void SizingDrape::set_material(const cloth::Material& material) {
     require(material.is_valid(&why), "SizingDrape::set_material: ", why);
     state_->sim.set_materials(fabrics(material, shared_->options.drape));
     state_->material = material;
+}
+
+void SizingDrape::set_body(const Eigen::MatrixX3d& body_vertices) {
+    const Eigen::MatrixX3d& base = shared_->body->positions();
+    require(body_vertices.rows() == 0 || (body_vertices.rows() == base.rows() && body_vertices.allFinite()),
+            "SizingDrape::set_body: the body has ", body_vertices.rows(), " vertices (need the base body's ",
+            base.rows(), ", all finite, or none)");
+    state_->body = body_vertices;
 }
 
 const GarmentSizing& SizingDrape::sizing() const { return state_->sizing; }

@@ -136,6 +136,28 @@ TEST_CASE("sizing drape: re-drapes of a skirt for new sizings and materials", "[
         CHECK(da.maxCoeff() < 15);
         CHECK(db.maxCoeff() < 15);
     }
+    SECTION("a moved body carries the garment with it (the joint material-pose search)") {
+        const SkirtDrape& d = skirt_drape();
+        SizingDrape fast(d.outfit, 0, d.b.model.faces, d.fabric);
+        const SizingDrapeResult here = fast.evaluate();
+        REQUIRE(here.converged);
+        // The body 2 cm forward: the skirt follows it by contact (it hangs on the hips).
+        const Eigen::MatrixX3d moved = d.outfit.body_vertices.rowwise() + Eigen::RowVector3d(0, 0, 0.02);
+        fast.set_body(moved);
+        const SizingDrapeResult there = fast.evaluate();
+        INFO(there.message);
+        CHECK(there.converged);
+        CHECK(there.penetration_max_m < 0.003);
+        const double shift = (there.positions - here.positions).col(2).mean();
+        CHECK(shift > 0.015);
+        CHECK(shift < 0.025);
+        // Back to the base body: the drape of before.
+        fast.set_body(Eigen::MatrixX3d());
+        const SizingDrapeResult back = fast.evaluate();
+        CHECK(std::abs((back.positions - here.positions).col(2).mean()) < 0.002);
+        // A body of another shape is refused.
+        CHECK_THROWS_AS(fast.set_body(Eigen::MatrixX3d::Zero(5, 3)), drape::InvalidInput);
+    }
     SECTION("bad sizings and materials are refused and leave it unchanged") {
         const SkirtDrape& d = skirt_drape();
         SizingDrape fast(d.outfit, 0, d.b.model.faces, d.fabric);

@@ -41,6 +41,10 @@ struct SizingDrapeOptions {
     /// sizing that slides off) cannot poison the next, and results do not depend on the
     /// order of evaluation (a swarm's particles give the same objective in any order).
     enum class WarmStart { base, last_settled } warm_start = WarmStart::base;
+    /// With a body set by set_body: the steps over which the body moves from the base pose
+    /// to it at the start of each evaluation (the cloth follows by contact), before the
+    /// settling steps; >= 1.
+    int body_blend_steps = 8;
     bool is_valid(std::string* why = nullptr) const;
 };
 
@@ -111,6 +115,13 @@ public:
     /// The fabric of the next evaluations (the waistband follows it). \throw drape::InvalidInput
     /// if invalid.
     void set_material(const cloth::Material& material);
+    /// The body of the next evaluations: the base body's vertices moved (#B x 3, same faces,
+    /// world metres), e.g. posed slightly differently (the joint material-pose search, paper
+    /// Algorithm 2). Each evaluation then starts from the base drape on the base body and
+    /// moves the body to these vertices over options().body_blend_steps steps before
+    /// settling. An empty matrix returns to the base body.
+    /// \throw drape::InvalidInput on a shape mismatch or a non-finite value.
+    void set_body(const Eigen::MatrixX3d& body_vertices);
 
     const GarmentSizing& sizing() const;        ///< the current sizing
     const cloth::Material& material() const;    ///< the current fabric
