@@ -25,6 +25,7 @@ struct RecoverFlags {
     unsigned seed = 1;
     std::optional<int> particles, generations, rounds;
     bool no_material = false;
+    bool joint_pose = false;
 };
 
 /// Adds the shared flags to a command.

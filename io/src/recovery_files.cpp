@@ -67,7 +67,10 @@ nlohmann::json garment_result_json(const recover::RecoveredGarment& g) {
             {"wrinkle_density_per_m2", g.wrinkle_density_per_m2},
             {"silhouette_rms_px", g.silhouette_rms_px},
             {"drape", drape_json(g.drape)},
-            {"objective_history", {{"sizing_px2", g.sizing_history}, {"material_relative2", g.material_history}}},
+            {"objective_history",
+             {{"sizing_px2", g.sizing_history},
+              {"material_relative2", g.material_history},
+              {"joint_pose_material", g.joint_history}}},
             {"seconds", {{"sizing", g.seconds_sizing}, {"material", g.seconds_material}}}};
 }
 

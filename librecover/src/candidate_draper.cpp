@@ -1,5 +1,7 @@
 #include "candidate_draper.hpp"
 
+#include <drape/body/pose.hpp>
+
 #include <drape/core/errors.hpp>
 
 namespace drape::recover {
@@ -47,7 +49,7 @@ garment::DressOutfitSummary CandidateDraper::dress(const std::vector<garment::Ga
 }
 
 DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& sizing,
-                                       const cloth::Material& material, int worker) const {
+                                       const cloth::Material& material, int worker, const Eigen::MatrixX3d* body) const {
     if (drapers_.empty()) throw InvalidInput("recover: candidates before the outfit was dressed");
     garment::SizingDrape& d = drapers_.at(static_cast<size_t>(worker)).at(static_cast<size_t>(index));
     const cloth::Material& now = d.material();
@@ -55,6 +57,7 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
         now.bending_n_m != material.bending_n_m || now.stretching_n_per_m != material.stretching_n_per_m ||
         now.density_kg_per_m2 != material.density_kg_per_m2)
         d.set_material(material);
+    d.set_body(body ? *body : body_);
     const garment::SizingDrapeResult r = d.evaluate(sizing);  // InvalidInput: the template or the morph refuses it
     DrapedCandidate c;
     c.mesh = d.mesh();
@@ -67,6 +70,16 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
         c.other_index.push_back(static_cast<int>(i));
     }
     return c;
+}
+
+Eigen::MatrixX3d CandidateDraper::posed_body(const body::Pose& pose) const {
+    return body::pose_body(model_, shaped_, pose).vertices;
+}
+
+void CandidateDraper::set_pose(const body::Pose& pose) {
+    pose_ = pose;
+    pose_.translation.setZero();
+    body_ = posed_body(pose_);
 }
 
 void CandidateDraper::set_sizing(int index, const garment::GarmentSizing& sizing) {

@@ -41,8 +41,19 @@ class CandidateDraper {
     /// distinct `worker`s (0 .. options.threads - 1), each with its own simulators.
     /// \throw drape::InvalidInput if the template refuses the sizing or the morph inverts a
     ///        triangle (the candidate is too far from the first drape's sizing).
+    /// `body` (if given: #B x 3, the body at the origin as simulated, same faces) replaces the
+    /// body for this candidate (SizingDrape::set_body: moved there from the first drape's
+    /// body before settling); else the body of set_pose.
     DrapedCandidate drape(int index, const garment::GarmentSizing& sizing, const cloth::Material& material,
-                          int worker) const;
+                          int worker, const Eigen::MatrixX3d* body = nullptr) const;
+
+    /// The draping pose (arms cleared), at the origin (no root translation).
+    const body::Pose& pose() const { return pose_; }
+    /// The body posed in `pose` at the origin (#B x 3), as `drape` takes it.
+    Eigen::MatrixX3d posed_body(const body::Pose& pose) const;
+    /// A new draping pose (at the origin) for the following candidates and the final drape,
+    /// e.g. refined by the joint material-pose search.
+    void set_pose(const body::Pose& pose);
 
     /// Keeps a garment's new sizing / material for the following candidates.
     void set_sizing(int index, const garment::GarmentSizing& sizing);
@@ -66,6 +77,7 @@ class CandidateDraper {
     Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();  ///< the fitted root translation
     /// [worker][garment]: each worker's own re-drapes (SizingDrape copies).
     mutable std::vector<std::vector<garment::SizingDrape>> drapers_;
+    Eigen::MatrixX3d body_;  ///< the body of set_pose (empty: the first drape's)
 };
 
 }  // namespace drape::recover

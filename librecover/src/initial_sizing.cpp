@@ -66,6 +66,7 @@ void top_from_features(garment::TShirtSizing& t, GarmentChoice choice, const vis
 }  // namespace
 
 garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::GarmentFeatures& f,
+                                      const vision::GarmentShapeCues& cues,
                                       const vision::Joints& joints, const body::BodyModel& model,
                                       const body::ShapedBody& shaped, const body::BodyMeasurements& measured) {
     garment::GarmentSizing g = garment::proposed_sizing(template_of(choice), model, shaped, measured);
@@ -91,8 +92,14 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
         }
         case garment::GarmentType::tshirt: top_from_features(g.tshirt, choice, f, h, stature); break;
         case garment::GarmentType::dress: {
-            top_from_features(g.dress.bodice, choice == GarmentChoice::dress ? GarmentChoice::tshirt : choice, f, h,
-                              stature);
+            // The bodice's sleeves as an upper garment's would be read (tank, t-shirt, long).
+            GarmentChoice sleeves = GarmentChoice::tshirt;
+            switch (vision::classify_upper(cues)) {
+                case vision::GarmentType::tank_top: sleeves = GarmentChoice::tank; break;
+                case vision::GarmentType::long_sleeve_top: sleeves = GarmentChoice::longsleeve; break;
+                default: break;
+            }
+            top_from_features(g.dress.bodice, sleeves, f, h, stature);
             const double skirt_length = feature_cm(f.length_from_waist_px, h, stature);
             if (std::isfinite(skirt_length)) g.dress.skirt.r2 = skirt_length;
             set_if(g.dress.skirt.alpha, skirt_flare_deg(feature_cm(f.hem_width_px, h, stature), g.dress.skirt.r1,
@@ -119,7 +126,7 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
     return g;
 }
 
-std::vector<bool> free_parameters(GarmentChoice choice) {
+std::vector<bool> free_parameters(GarmentChoice choice, const garment::GarmentSizing& start) {
     const auto params = garment::sizing_parameters(template_of(choice));
     std::vector<bool> free(params.size(), true);
     for (size_t i = 0; i < params.size(); ++i) {
@@ -128,6 +135,7 @@ std::vector<bool> free_parameters(GarmentChoice choice) {
         if (n == "r1" || n == "skirt.r1" || n == "r" || n == "bodice.r") free[i] = false;
         if (pants && (n == "h2" || n == "h3")) free[i] = false;
         if (choice == GarmentChoice::tank && n == "l1") free[i] = false;
+        if (n == "bodice.l1" && start.dress.bodice.l1 <= 0) free[i] = false;  // a sleeveless dress
         if (n == "skirt.l1") free[i] = false;
     }
     return free;

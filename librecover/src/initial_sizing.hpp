@@ -6,6 +6,7 @@
 #include <drape/body/measurements.hpp>
 #include <drape/garment/garment_sizing.hpp>
 #include <drape/recover/recover.hpp>
+#include <drape/vision/classify_garment.hpp>
 #include <drape/vision/garment_features.hpp>
 #include <drape/vision/joints.hpp>
 
@@ -17,15 +18,19 @@ namespace drape::recover {
 /// fitted to the arms and neck), with the lengths and the flare the photo shows: image
 /// features (pixels / the skeleton's body height) times the fitted stature. Features that
 /// were not measured (NaN) leave the proposal's value; every value is clamped to the
-/// template's range. Shorts get a short leg, a tank no sleeve, a long-sleeve top long ones.
+/// template's range. Shorts get a short leg, a tank no sleeve, a long-sleeve top long ones;
+/// a dress's bodice gets the sleeves its shape cues show (vision::classify_upper: a
+/// sleeveless dress has none, as a tank).
 garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::GarmentFeatures& features,
+                                      const vision::GarmentShapeCues& cues,
                                       const vision::Joints& joints, const body::BodyModel& model,
                                       const body::ShapedBody& shaped, const body::BodyMeasurements& measured);
 
 /// The parameters the sizing search moves (sizing_parameters order): those the silhouette
 /// shows. Fixed: a skirt's waist radius r1, a top's neckline r, pants' crotch depths h2 and
-/// h3, a tank's sleeve length (0), a dress's skirt waist (tied to the bodice).
-std::vector<bool> free_parameters(GarmentChoice choice);
+/// h3, a tank's or a sleeveless dress's sleeve length (0 in `start`), a dress's skirt waist
+/// (tied to the bodice).
+std::vector<bool> free_parameters(GarmentChoice choice, const garment::GarmentSizing& start);
 
 /// Lower bounds of the sizing search (sizing_parameters order, NaN = none): the girths the
 /// body needs (a skirt's or pants' waist and hip, a leg's knee and ankle, a top's panel width

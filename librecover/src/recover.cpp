@@ -4,6 +4,7 @@
 
 #include "candidate_draper.hpp"
 #include "initial_sizing.hpp"
+#include "joint_pose_material.hpp"
 #include "outfit_view.hpp"
 
 #include <drape/body/measurements.hpp>
@@ -30,8 +31,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-struct Cancelled {};
 
 // Image classes the templates cannot represent: the closest template's result is returned
 // and the garment is marked unsupported (paper section 7, "Limitations").
@@ -254,7 +253,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                 r.unsupported_reason = "the templates cannot represent a " + g.class_name + "; this is the closest template's (" +
                                        garment::garment_type_name(r.type) + ") result";
             }
-            r.initial_sizing = initial_sizing(choice, g.features, in.joints, model, out.shaped, measured);
+            r.initial_sizing = initial_sizing(choice, g.features, g.cues, in.joints, model, out.shaped, measured);
             r.sizing = r.initial_sizing;
             r.base_fabric = options.base_fabric;
             r.material = base;
@@ -353,7 +352,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                 so.generations = options.generations;
                 so.threads = options.threads;
                 so.seed = options.seed + static_cast<unsigned>(101 * round + i);
-                so.free = free_parameters(g.choice);
+                so.free = free_parameters(g.choice, g.initial_sizing);
                 so.lower_bounds = lower_bounds(g.initial_sizing);
                 so.constrain = garment::tie_dress_waist;
                 so.box_fraction = round == 1 ? 0.15 : 0.07;
@@ -388,7 +387,42 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
             if (!improved) break;
         }
 
-        // ---- 6. The output drape at the output resolution, and its measures.
+        // ---- 6. The joint material-pose search (paper Algorithm 2), garment by garment: each
+        // moves only the joints under it, so the pose gathers every garment's refinement.
+        if (options.joint_pose_material && options.estimate_material) {
+            for (size_t i = 0; i < out.garments.size(); ++i) {
+                RecoveredGarment& g = out.garments[i];
+                if (g.wrinkle_density_per_m2 < 0 || !(g.target_curvature_per_m > 0)) continue;
+                ts = Clock::now();
+                const int gi = static_cast<int>(i);
+                report(Stage::pose_material, gi, 0, 0);
+                const JointSearchResult js = joint_pose_material(
+                    g.choice, draper.pose(), g.material.bending_scale, g.target_curvature_per_m,
+                    [&](double bending, const body::Pose& pose, int worker) {
+                        cloth::Material m = g.material;
+                        m.bending_scale = bending;
+                        const Eigen::MatrixX3d body = draper.posed_body(pose);
+                        const DrapedCandidate c = draper.drape(gi, g.sizing, m, worker, &body);
+                        ++evaluations;
+                        return mean_curvature(c.mesh, c.positions);
+                    },
+                    options,
+                    [&] {
+                        report(Stage::pose_material, gi, 0, 0);
+                        return true;
+                    });
+                g.joint_history = js.history;
+                if (js.improved) {
+                    draper.set_pose(js.pose);
+                    g.material.bending_scale = js.bending_scale;
+                    draper.set_material(gi, g.material);
+                }
+                g.seconds_material += since(ts);
+                summary.seconds_material += since(ts);
+            }
+        }
+
+        // ---- 7. The output drape at the output resolution, and its measures.
         report(Stage::final_drape, -1, 0, 0);
         ts = Clock::now();
         std::vector<garment::GarmentRequest> final_requests;

@@ -61,6 +61,7 @@ std::string stage_name(Stage s) {
         case Stage::dressing: return "dressing";
         case Stage::sizing: return "sizing";
         case Stage::material: return "material";
+        case Stage::pose_material: return "pose and material";
         case Stage::final_drape: return "final drape";
         case Stage::measuring: return "measuring";
     }
@@ -107,6 +108,13 @@ bool RecoverOptions::is_valid(std::string* why) const {
     if (!(final_edge_cm > 0.2 && final_edge_cm <= 20))
         return fail("final_edge_cm must be in (0.2, 20] (got " + std::to_string(final_edge_cm) + ")");
     if (particles < 2) return fail("particles must be >= 2 (got " + std::to_string(particles) + ")");
+    if (pose_particles < 2) return fail("pose_particles must be >= 2 (got " + std::to_string(pose_particles) + ")");
+    if (pose_generations < 0)
+        return fail("pose_generations must be >= 0 (got " + std::to_string(pose_generations) + ")");
+    if (!(pose_max_degrees > 0 && pose_max_degrees <= 30))
+        return fail("pose_max_degrees must be in (0, 30] (got " + std::to_string(pose_max_degrees) + ")");
+    if (!(pose_prior_weight >= 0) || !std::isfinite(pose_prior_weight))
+        return fail("pose_prior_weight must be >= 0 (got " + std::to_string(pose_prior_weight) + ")");
     if (generations < 0) return fail("generations must be >= 0 (got " + std::to_string(generations) + ")");
     if (rounds < 1) return fail("rounds must be >= 1 (got " + std::to_string(rounds) + ")");
     if (max_drape_steps < 20) return fail("max_drape_steps must be >= 20 (got " + std::to_string(max_drape_steps) + ")");

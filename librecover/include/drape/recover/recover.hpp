@@ -48,7 +48,7 @@ Quality quality_from_name(const std::string& name);
 std::string quality_name(Quality q);
 
 /// What the stages are doing, for a progress display.
-enum class Stage { segmenting, fitting_body, dressing, sizing, material, final_drape, measuring };
+enum class Stage { segmenting, fitting_body, dressing, sizing, material, pose_material, final_drape, measuring };
 std::string stage_name(Stage s);
 
 struct RecoverProgress {
@@ -89,6 +89,18 @@ struct RecoverOptions {
     bool estimate_material = true;
     /// The base fabric of the paper's material space (bending scale ×1…×100).
     std::string base_fabric = "gray-interlock";
+    /// The joint material-pose search (paper Algorithm 2) after the G/C rounds: for each
+    /// garment with a curvature target, the pose angles of the joints under it (about the
+    /// three principal axes of each joint's parent frame, within ± pose_max_degrees) are
+    /// searched by the particle swarm with C fixed, then C by L-BFGS with the pose fixed, on
+    /// E = ((K − K_target) / K_target)² + pose_prior_weight · mean((Δθ / pose_max_degrees)²).
+    /// The result is kept only where E falls. Off by default: it does not improve the
+    /// curvature accuracy on the synthetic suite (docs/recovery.md, "Joint material-pose").
+    bool joint_pose_material = false;
+    int pose_particles = 12;               ///< swarm size of the pose search, >= 2
+    int pose_generations = 3;              ///< its generations, >= 0
+    double pose_max_degrees = 6.0;         ///< the box of each angle, (0, 30]
+    double pose_prior_weight = 0.02;       ///< >= 0: keeps the pose near the photo fit's
     /// Called between stages and after every search generation / material iterate: return
     /// false to stop (the summary then says cancelled; nothing is half-made).
     std::function<bool(const RecoverProgress&)> on_progress;
@@ -129,6 +141,9 @@ struct RecoveredGarment {
     double silhouette_rms_px = 0;          ///< final silhouette distance (RMS, both sides)
     std::vector<double> sizing_history;    ///< best silhouette energy (px²) after each round's search
     std::vector<double> material_history;  ///< (K − K_target)² / K_target² after each round's search
+    /// E of the joint material-pose search: before it, then after its pose and material steps
+    /// (empty when it did not run).
+    std::vector<double> joint_history;
     double seconds_sizing = 0, seconds_material = 0;
     garment::Pattern pattern;              ///< of `sizing`
     garment::GarmentMesh mesh;             ///< output resolution
