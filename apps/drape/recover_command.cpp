@@ -72,6 +72,9 @@ void add_recover_flags(CLI::App* cmd, RecoverFlags& f) {
     cmd->add_option("--generations", f.generations, "swarm generations per sizing search (overrides --quality)");
     cmd->add_option("--rounds", f.rounds, "sizing/material rounds at most (overrides --quality)");
     cmd->add_flag("--no-material", f.no_material, "keep the base fabric at bending x1 (no material search)");
+    cmd->add_option("--material-target", f.material_target,
+                    "calibrated (default: K from the calibrated mapping of P) | synthesis (P measured on renders of "
+                    "the candidate drapes; docs/material-estimation.md)");
     cmd->add_flag("--joint-pose", f.joint_pose,
                   "after the sizing/material rounds, search the pose of the joints under each garment together with "
                   "the material (paper Algorithm 2; off by default, docs/recovery.md)");

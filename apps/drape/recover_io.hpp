@@ -26,6 +26,7 @@ struct RecoverFlags {
     std::optional<int> particles, generations, rounds;
     bool no_material = false;
     bool joint_pose = false;
+    std::string material_target = "calibrated";
 };
 
 /// Adds the shared flags to a command.

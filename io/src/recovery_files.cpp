@@ -138,6 +138,8 @@ nlohmann::json recovery_json(const std::string& image, const recover::RecoverInp
             {"image", {{"file", image}, {"width", in.image_bgr.cols}, {"height", in.image_bgr.rows}}},
             {"mode", in.strokes.empty() ? "auto" : "strokes"},
             {"quality", recover::quality_name(options.quality)},
+            {"material_target", recover::material_target_name(options.material_target)},
+            {"joint_pose_material", options.joint_pose_material},
             {"body", {{"params", to_json(result.fit.shape)}, {"pose", to_json(result.pose)}, {"camera", to_json(result.fit.camera)}}},
             {"garments", garments},
             {"summary", summary_json(s)}};

@@ -71,11 +71,16 @@ OutfitView::OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body
     body_.body_F = model.faces;
 }
 
-garment::CandidateSilhouette OutfitView::candidate(const CandidateDraper&, int, const DrapedCandidate& c, int) const {
+OutfitMeshes OutfitView::candidate_scene(const DrapedCandidate& c) const {
     OutfitMeshes scene = body_;
     for (size_t j = 0; j < c.other_meshes.size(); ++j)
         scene.garments.push_back(outfit_garment(c.other_meshes[j], c.other_positions[j], 2 + static_cast<int>(j), "other"));
     scene.garments.push_back(outfit_garment(c.mesh, c.positions, 1, "candidate"));
+    return scene;
+}
+
+garment::CandidateSilhouette OutfitView::candidate(const DrapedCandidate& c) const {
+    const OutfitMeshes scene = candidate_scene(c);
     LabelMaskOptions o;
     o.width_px = width_;
     o.height_px = height_;

@@ -34,9 +34,14 @@ class OutfitView {
     OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body_vertices, const body::Camera& camera,
                int width, int height);
 
-    /// Candidate `c` of garment `index` with the body and the other garments in front or behind.
-    garment::CandidateSilhouette candidate(const CandidateDraper& draper, int index, const DrapedCandidate& c,
-                                           int worker) const;
+    /// The body with the other garments of candidate `c` and the candidate itself last
+    /// (class ids: the candidate 1, the others 2, 3, ...).
+    OutfitMeshes candidate_scene(const DrapedCandidate& c) const;
+    /// Candidate `c`'s silhouette with the body and the other garments in front or behind.
+    garment::CandidateSilhouette candidate(const DrapedCandidate& c) const;
+    const body::Camera& camera() const { return camera_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
 
     /// The body (label `body_label`) and the garments, each with its label.
     OutfitRaster project(const std::vector<const garment::GarmentMesh*>& meshes,

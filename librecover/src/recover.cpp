@@ -5,6 +5,7 @@
 #include "candidate_draper.hpp"
 #include "initial_sizing.hpp"
 #include "joint_pose_material.hpp"
+#include "wrinkle_synthesis.hpp"
 #include "outfit_view.hpp"
 
 #include <drape/body/measurements.hpp>
@@ -289,7 +290,35 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
             for (size_t i = 0; i < out.garments.size(); ++i) {
                 RecoveredGarment& g = out.garments[i];
                 // Material: the bending scale whose drape has the target curvature.
-                if (options.estimate_material && g.wrinkle_density_per_m2 >= 0) {
+                if (options.estimate_material && g.wrinkle_density_per_m2 >= 0 &&
+                    options.material_target == MaterialTarget::wrinkle_synthesis) {
+                    // Analysis by synthesis: the bending scale whose render shows the photo's P.
+                    ts = Clock::now();
+                    g.target_curvature_per_m =
+                        garment::curvature_from_wrinkle_density(g.type, g.wrinkle_density_per_m2).k_per_m;
+                    const int gi = static_cast<int>(i);
+                    const SynthesisSearch ss = search_bending_by_synthesis(g.wrinkle_density_per_m2, [&](double x) {
+                        cloth::Material m = g.material;
+                        m.bending_scale = std::pow(10.0, x);
+                        const DrapedCandidate c = draper.drape(gi, g.sizing, m, 0);
+                        ++evaluations;
+                        report(Stage::material, gi, round, 0);
+                        return rendered_wrinkle_density(view.candidate_scene(c), view, in.joints,
+                                                        options.synthesis_samples, options.threads);
+                    });
+                    const double before = g.material_history.empty() ? std::numeric_limits<double>::infinity()
+                                                                     : g.material_history.back();
+                    g.material_history.push_back(std::min(before, ss.objective));
+                    if (ss.objective < before) {
+                        g.material.bending_scale = std::pow(10.0, ss.log10_bending_scale);
+                        draper.set_material(gi, g.material);
+                        g.bending_low = std::pow(10.0, ss.low);
+                        g.bending_high = std::pow(10.0, ss.high);
+                        improved = true;
+                    }
+                    g.seconds_material += since(ts);
+                    summary.seconds_material += since(ts);
+                } else if (options.estimate_material && g.wrinkle_density_per_m2 >= 0) {
                     ts = Clock::now();
                     // The calibrated mapping of P (docs/material-estimation.md).
                     const garment::CurvatureTarget target =
@@ -368,7 +397,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                     [&](const garment::GarmentSizing& candidate, int worker) {
                         const DrapedCandidate c = draper.drape(gi, candidate, g.material, worker);
                         ++evaluations;
-                        const double e = scorers[i].score(view.candidate(draper, gi, c, worker)).energy_px2;
+                        const double e = scorers[i].score(view.candidate(c)).energy_px2;
                         // A re-drape that did not settle cleanly (slid, caught) is worse than its outline.
                         return c.usable ? e : 2.0 * e;
                     },

@@ -54,6 +54,16 @@ std::string quality_name(Quality q) {
     return "default";
 }
 
+MaterialTarget material_target_from_name(const std::string& name) {
+    if (name == "calibrated") return MaterialTarget::calibrated_curvature;
+    if (name == "synthesis") return MaterialTarget::wrinkle_synthesis;
+    throw InvalidInput("material target '" + name + "' is not one of calibrated, synthesis");
+}
+
+std::string material_target_name(MaterialTarget t) {
+    return t == MaterialTarget::wrinkle_synthesis ? "synthesis" : "calibrated";
+}
+
 std::string stage_name(Stage s) {
     switch (s) {
         case Stage::segmenting: return "segmenting";
@@ -108,6 +118,8 @@ bool RecoverOptions::is_valid(std::string* why) const {
     if (!(final_edge_cm > 0.2 && final_edge_cm <= 20))
         return fail("final_edge_cm must be in (0.2, 20] (got " + std::to_string(final_edge_cm) + ")");
     if (particles < 2) return fail("particles must be >= 2 (got " + std::to_string(particles) + ")");
+    if (synthesis_samples < 1 || synthesis_samples > 64)
+        return fail("synthesis_samples must be in 1..64 (got " + std::to_string(synthesis_samples) + ")");
     if (pose_particles < 2) return fail("pose_particles must be >= 2 (got " + std::to_string(pose_particles) + ")");
     if (pose_generations < 0)
         return fail("pose_generations must be >= 0 (got " + std::to_string(pose_generations) + ")");

@@ -74,6 +74,20 @@ struct RecoverInputs {
     std::optional<body::Gender> gender;    ///< known gender
 };
 
+/// What the material search matches (docs/material-estimation.md, "Two approaches").
+enum class MaterialTarget {
+    /// The mean curvature K that the calibrated mapping K(P) gives for the photo's wrinkle
+    /// density P; L-BFGS on (K − K_target)² (curvature_calibration.hpp).
+    calibrated_curvature,
+    /// Analysis by synthesis: each candidate bending scale is draped and rendered with the
+    /// fitted camera, and P is measured on the render by the photo's detector; the bending
+    /// scale whose P matches the photo's is kept (a grid search: P is piecewise constant).
+    wrinkle_synthesis,
+};
+/// "calibrated" or "synthesis". \throw drape::InvalidInput otherwise.
+MaterialTarget material_target_from_name(const std::string& name);
+std::string material_target_name(MaterialTarget t);
+
 struct RecoverOptions {
     Quality quality = Quality::normal;
     int threads = 2;                       ///< workers for the particle swarm and the body fit, >= 1
@@ -89,6 +103,11 @@ struct RecoverOptions {
     bool estimate_material = true;
     /// The base fabric of the paper's material space (bending scale ×1…×100).
     std::string base_fabric = "gray-interlock";
+    /// What the material search matches; the default is the approach that measured better on
+    /// the synthetic scenes (docs/material-estimation.md).
+    MaterialTarget material_target = MaterialTarget::calibrated_curvature;
+    /// Samples per pixel of the renders of wrinkle_synthesis, 1..64.
+    int synthesis_samples = 4;
     /// The joint material-pose search (paper Algorithm 2) after the G/C rounds: for each
     /// garment with a curvature target, the pose angles of the joints under it (about the
     /// three principal axes of each joint's parent frame, within ± pose_max_degrees) are
