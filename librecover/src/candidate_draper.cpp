@@ -36,6 +36,8 @@ garment::DressOutfitSummary CandidateDraper::dress(const std::vector<garment::Ga
     pose_ = outfit_.pose;  // candidates are draped in the pose the arms were cleared to
     shifted_ = outfit_;
     shift(shifted_);
+    current_meshes_ = shifted_.meshes;
+    current_positions_ = shifted_.positions;
     if (s.termination != garment::DressOutfitTermination::draped) return s;
     // One fast re-drape per garment (morphed rest shape, warm start from this drape), copied
     // once per worker: each worker owns its simulators.
@@ -65,8 +67,8 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
     c.usable = r.usable(d.options().drape);
     for (size_t i = 0; i < outfit_.meshes.size(); ++i) {
         if (static_cast<int>(i) == index) continue;
-        c.other_meshes.push_back(shifted_.meshes[i]);
-        c.other_positions.push_back(shifted_.positions[i]);
+        c.other_meshes.push_back(current_meshes_[i]);
+        c.other_positions.push_back(current_positions_[i]);
         c.other_index.push_back(static_cast<int>(i));
     }
     return c;
@@ -84,6 +86,16 @@ void CandidateDraper::set_pose(const body::Pose& pose) {
 
 void CandidateDraper::set_sizing(int index, const garment::GarmentSizing& sizing) {
     requests_.at(static_cast<size_t>(index)).sizing = sizing;
+    if (drapers_.empty()) return;
+    garment::SizingDrape& d = drapers_[0].at(static_cast<size_t>(index));
+    try {
+        d.set_body(body_);
+        const garment::SizingDrapeResult r = d.evaluate(sizing);
+        current_meshes_[static_cast<size_t>(index)] = d.mesh();
+        current_positions_[static_cast<size_t>(index)] = r.positions.rowwise() + offset_.transpose();
+    } catch (const InvalidInput&) {
+        // A sizing the search accepted was evaluated before; keep the last drape if not.
+    }
 }
 
 void CandidateDraper::set_material(int index, const cloth::Material& material) {

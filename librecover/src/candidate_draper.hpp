@@ -55,7 +55,9 @@ class CandidateDraper {
     /// e.g. refined by the joint material-pose search.
     void set_pose(const body::Pose& pose);
 
-    /// Keeps a garment's new sizing / material for the following candidates.
+    /// Keeps a garment's new sizing / material for the following candidates. A new sizing
+    /// is also re-draped once (fast re-drape, its current material), so that the candidates
+    /// of the other garments see it as it now lies (a top's hem over the pants' waist).
     void set_sizing(int index, const garment::GarmentSizing& sizing);
     void set_material(int index, const cloth::Material& material);
 
@@ -74,6 +76,10 @@ class CandidateDraper {
     std::vector<garment::GarmentRequest> requests_;
     garment::DressedOutfit outfit_;   ///< the first drape, at the origin (as simulated)
     garment::DressedOutfit shifted_;  ///< the same, in the photo's frame
+    /// Each garment as it now lies (photo frame): the first drape, then the re-drape of its
+    /// latest sizing; what the other garments' candidates see.
+    std::vector<garment::GarmentMesh> current_meshes_;
+    std::vector<Eigen::MatrixX3d> current_positions_;
     Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();  ///< the fitted root translation
     /// [worker][garment]: each worker's own re-drapes (SizingDrape copies).
     mutable std::vector<std::vector<garment::SizingDrape>> drapers_;

@@ -287,7 +287,10 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
         // ---- 5. Rounds of (material, sizing) per garment (paper Algorithm 1).
         for (int round = 1; round <= options.rounds; ++round) {
             bool improved = false;
-            for (size_t i = 0; i < out.garments.size(); ++i) {
+            // Outer garments first: a top is not hidden by the pants under it, while the pants'
+            // visible outline depends on where the top's hem now lies (set_sizing re-drapes it).
+            for (size_t k = out.garments.size(); k-- > 0;) {
+                const size_t i = k;
                 RecoveredGarment& g = out.garments[i];
                 // Material: the bending scale whose drape has the target curvature.
                 if (options.estimate_material && g.wrinkle_density_per_m2 >= 0 &&
