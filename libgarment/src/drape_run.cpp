@@ -176,6 +176,11 @@ bool DrapeRun::run_steps(int budget, int min_steps, DrapePhase phase) {
             sim_.move_obstacle(body_at(body_path_, motion_steps_ * options_.simulator.time_step_s, motion_s_));
         }
         const cloth::StepSummary s = sim_.step();
+        if (s.termination == cloth::StepTermination::cancelled) {  // options.simulator.on_iteration said stop
+            summary_.termination = DrapeTermination::cancelled;
+            summary_.message = "cancelled in step " + std::to_string(summary_.steps + 1);
+            return false;
+        }
         if (!s.usable()) {
             summary_.termination = DrapeTermination::step_failed;
             summary_.message = "step " + std::to_string(summary_.steps + 1) + ": " + s.brief_report();
