@@ -288,11 +288,15 @@ void DrapeRun::solve_static() {
 }
 
 void DrapeRun::measure(Eigen::MatrixX3d& out_positions) {
-    const cloth::ContactReport r = sim_.contact_report();
-    summary_.seam_gap_max_m = r.max_stitch_gap_m;
-    summary_.penetration_max_m = r.max_penetration_m;
-    summary_.vertices_inside = r.vertices_inside;
-    summary_.self_intersections = r.self_intersections;
+    // A cancelled drape returns at once: the contact report (self-intersections above all)
+    // would cost a step's time, for figures of a state nobody asked for.
+    if (summary_.termination != DrapeTermination::cancelled) {
+        const cloth::ContactReport r = sim_.contact_report();
+        summary_.seam_gap_max_m = r.max_stitch_gap_m;
+        summary_.penetration_max_m = r.max_penetration_m;
+        summary_.vertices_inside = r.vertices_inside;
+        summary_.self_intersections = r.self_intersections;
+    }
     summary_.converged = summary_.termination == DrapeTermination::converged;
     out_positions = garment_positions(sim_.positions());
     const Eigen::Vector3d g = options_.simulator.gravity_m_per_s2;
