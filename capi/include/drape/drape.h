@@ -91,9 +91,11 @@ DRAPE_API void drape_free(void* memory);
 /** A cancel flag: set from any thread (a UI, a signal-handling thread) to stop every long
  *  call whose monitor holds it. Setting it is atomic and lock-free. */
 typedef struct drape_cancel_flag_s* drape_cancel_flag;
+/** A new flag, not set. */
 DRAPE_API drape_status drape_cancel_flag_create(drape_cancel_flag* out_flag);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_cancel_flag_destroy(drape_cancel_flag flag);
-/** Requests cancellation (flag may not be NULL; a NULL flag is ignored). */
+/** Requests cancellation (a NULL flag is ignored). */
 DRAPE_API void drape_cancel_flag_set(drape_cancel_flag flag);
 /** Clears the request, so the flag can be reused for another call. */
 DRAPE_API void drape_cancel_flag_reset(drape_cancel_flag flag);
@@ -138,6 +140,7 @@ DRAPE_API drape_status drape_body_model_load(const char* path, drape_body_model*
 DRAPE_API drape_status drape_body_model_save(drape_body_model model, const char* path);
 /** A handle on the built-in mannequin model (generated on first use, then shared). */
 DRAPE_API drape_status drape_body_model_default(drape_body_model* out_model);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_body_model_destroy(drape_body_model model);
 
 /* ---- body: shape, pose, geometry ---------------------------------------------------- */
@@ -194,6 +197,7 @@ DRAPE_API const char* drape_joint_name(size_t joint);
 /** Creates a body of `model` (NULL = the built-in model) with the prior's mean female
  *  shape in the rest A-pose. The body keeps its own reference to the model. */
 DRAPE_API drape_status drape_body_create(drape_body_model model, drape_body* out_body);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_body_destroy(drape_body body);
 
 /** Shapes the body: completes the parameters from the prior, then matches every given
@@ -279,6 +283,7 @@ DRAPE_API drape_status drape_segment_options_init(drape_segment_options* options
  *  garments JSON lists none). */
 DRAPE_API drape_status drape_segment(const char* image_path, const char* joints_path,
                                      const drape_segment_options* options, drape_segmentation* out_segmentation);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_segmentation_destroy(drape_segmentation segmentation);
 /** The photo's size in pixels. */
 DRAPE_API drape_status drape_segmentation_get_size(drape_segmentation segmentation, int32_t* width, int32_t* height);
@@ -307,6 +312,7 @@ DRAPE_API drape_status drape_pattern_create(const char* garment, const char* siz
 /** A pattern sized for a body: G proposed from its measurements (a top fitted to its arms and
  *  neck), as `drape pattern --sizing auto`. */
 DRAPE_API drape_status drape_pattern_create_for_body(const char* garment, drape_body body, drape_pattern* out_pattern);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_pattern_destroy(drape_pattern pattern);
 /** {"garment": NAME, "sizing": {G}, "panels": n, "seams": n, "area_cm2": A}. Free with drape_free(). */
 DRAPE_API drape_status drape_pattern_to_json(drape_pattern pattern, char** out_json);
@@ -323,6 +329,7 @@ typedef struct drape_garment_mesh_s* drape_garment_mesh;
  *  \return DRAPE_ERROR_NO_CONVERGENCE if the seams' discretisations did not agree (the mesh
  *          is still returned). */
 DRAPE_API drape_status drape_garment_mesh_create(drape_pattern pattern, double edge_cm, drape_garment_mesh* out_mesh);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_garment_mesh_destroy(drape_garment_mesh mesh);
 /** Vertex, face and stitch counts (any pointer may be NULL). */
 DRAPE_API drape_status drape_garment_mesh_get_counts(drape_garment_mesh mesh, size_t* vertex_count, size_t* face_count,
@@ -380,9 +387,11 @@ typedef struct drape_outfit_s* drape_outfit;
 DRAPE_API drape_status drape_dress(drape_body body, const drape_garment_spec* garments, size_t garment_count,
                                    const drape_dress_options* options, const drape_monitor* monitor,
                                    drape_outfit* out_outfit);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_outfit_destroy(drape_outfit outfit);
 DRAPE_API drape_status drape_outfit_get_garment_count(drape_outfit outfit, size_t* count);
-/** The draped garment `index` (inner first) as a mesh handle (vertices draped, world). */
+/** The draped garment `index` (inner first) as a new mesh handle (draped vertices, world),
+ *  independent of the outfit. */
 DRAPE_API drape_status drape_outfit_get_garment_mesh(drape_outfit outfit, size_t index, drape_garment_mesh* out_mesh);
 /** summary.json of `drape dress`: drape figures (steps, seam gap, penetration, usable, ...)
  *  and per garment its sizing and checks. Free with drape_free(). */
@@ -420,6 +429,7 @@ DRAPE_API drape_status drape_simulator_create(const double* vertices, size_t ver
 DRAPE_API drape_status drape_simulator_create_from_garment(drape_garment_mesh mesh, const char* material,
                                                            const drape_simulator_options* options,
                                                            drape_simulator* out_simulator);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_simulator_destroy(drape_simulator simulator);
 /** Sets the obstacle (a closed triangle mesh, outward counter-clockwise faces) the cloth
  *  collides with, replacing any previous one. vertices #O x 3 world metres, faces #G x 3. */
@@ -493,6 +503,7 @@ typedef struct drape_recovery_s* drape_recovery;
 DRAPE_API drape_status drape_recover(drape_body_model model, const drape_recover_inputs* inputs,
                                      const drape_recover_options* options, const drape_monitor* monitor,
                                      drape_recovery* out_recovery);
+/** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_recovery_destroy(drape_recovery recovery);
 /** result.json of `drape recover`: image, body (shape, pose, camera), per garment its type,
  *  sizing G, material (scales, tables, nearest fabric), drape state and figures; timings.
@@ -508,7 +519,8 @@ DRAPE_API drape_status drape_recovery_garment_json(drape_recovery recovery, size
  *  members of its result.json entry. Free with drape_free(). */
 DRAPE_API drape_status drape_recovery_garment_sizing_json(drape_recovery recovery, size_t index, char** out_json);
 DRAPE_API drape_status drape_recovery_garment_material_json(drape_recovery recovery, size_t index, char** out_json);
-/** Garment `index` as a mesh handle (draped, world) and its pattern (new handles). */
+/** Garment `index` as a new mesh handle (draped vertices, world; its pattern through
+ *  drape_garment_mesh_get_pattern), independent of the recovery. */
 DRAPE_API drape_status drape_recovery_get_garment_mesh(drape_recovery recovery, size_t index,
                                                        drape_garment_mesh* out_mesh);
 /** The recovered body (fitted shape, the pose draped in) as a new body handle. */
