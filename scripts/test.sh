@@ -12,7 +12,9 @@ if [ "${DRAPE_SKIP_SANITIZERS:-0}" != 1 ]; then
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer: body and C API suites"
   cmake -S "$here" -B "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDRAPE_SANITIZE=ON \
     -DDRAPE_BUILD_APPS=OFF >/dev/null
-  cmake --build "$here/build-asan" -j"$jobs" --target drape_body_tests drape_capi_tests drape_capi_c_test
+  cmake --build "$here/build-asan" -j"$jobs" --target drape_body_tests drape_capi_tests drape_capi_c_test \
+    drape_capi_thread_test drape_capi_abi_test drape_capi_shared
   (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j"$jobs" --timeout 1800 -R "^(body|capi)")
+  "$here/scripts/test_tsan.sh" "$here/build-tsan"
 fi

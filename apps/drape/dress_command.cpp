@@ -105,23 +105,11 @@ cv::Mat write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const
 /// The summary.json keys common to a garment and an outfit.
 nlohmann::json drape_report(const DressArgs& args, const std::string& material_source,
                             const garment::DrapeSummary& d) {
-    return {{"material", material_source},
-            {"pose", args.pose},
-            {"edge_cm", args.edge_cm},
-            {"vertices", d.vertices},
-            {"stitches", d.stitches},
-            {"seam_gap_max_m", d.seam_gap_max_m},
-            {"penetration_max_m", d.penetration_max_m},
-            {"vertices_inside", d.vertices_inside},
-            {"self_intersections", d.self_intersections},
-            {"mean_drop_m", d.mean_drop_m},
-            {"converged", d.converged},
-            {"usable", d.usable()},
-            {"steps", d.steps},
-            {"steps_to_close_seams", d.steps_to_close_seams},
-            {"welded", d.welded},
-            {"message", d.message},
-            {"seconds_drape", d.seconds}};
+    nlohmann::json report = to_json(d);
+    report["material"] = material_source;
+    report["pose"] = args.pose;
+    report["edge_cm"] = args.edge_cm;
+    return report;
 }
 
 /// Progress on stderr every 50 steps.

@@ -1,9 +1,8 @@
 // drape fit-body IMAGE --joints J.json (--silhouette S.png [--skin K.png] | --labels L.png)
 //                [--height M] [--gender female|male] [--focal PX] --out DIR
-#include <drape/io/body_json.hpp>
+#include <drape/io/body_fit_files.hpp>
 #include "commands.hpp"
 #include <drape/io/image_io.hpp>
-#include <drape/io/joints_json.hpp>
 #include <drape/io/json_io.hpp>
 
 #include <drape/body/fit_body.hpp>
@@ -40,48 +39,10 @@ struct FitArgs {
     bool no_shape = false;
 };
 
-void require_size(const body::Mask& m, const cv::Mat& photo, const std::string& what,
-                  const std::string& file) {
-    if (m.width != photo.cols || m.height != photo.rows)
-        throw InvalidInput(what + " '" + file + "' is " + std::to_string(m.width) + " x " +
-                           std::to_string(m.height) + " pixels but the photo is " +
-                           std::to_string(photo.cols) + " x " + std::to_string(photo.rows));
-}
-
-const char* termination_name(body::Termination t) {
-    switch (t) {
-        case body::Termination::converged: return "converged";
-        case body::Termination::max_iterations: return "max_iterations";
-        case body::Termination::failed: return "failed";
-        case body::Termination::cancelled: return "cancelled";
-    }
-    return "";
-}
-
 void run_fit_body(const FitArgs& args) {
-    if (args.labels.empty() && args.silhouette.empty())
-        throw InvalidInput("drape fit-body: give --silhouette S.png (or --labels L.png)");
-    if (!args.labels.empty() && (!args.silhouette.empty() || !args.skin.empty()))
-        throw InvalidInput("drape fit-body: --labels replaces --silhouette and --skin; give one or the other");
-
-    const cv::Mat photo = read_photo(args.image);
-    const JointsFile joints = read_joints_file(args.joints, photo.cols, photo.rows);
-
-    body::FitInputs in;
-    in.joints_px = joints.joints_px;
-    if (!args.labels.empty()) {
-        LabelMasks masks = read_label_masks(args.labels);
-        require_size(masks.person, photo, "label map", args.labels);
-        in.person = std::move(masks.person);
-        if (masks.skin.count() > 0) in.skin = std::move(masks.skin);
-    } else {
-        in.person = read_mask(args.silhouette, "silhouette");
-        require_size(in.person, photo, "silhouette", args.silhouette);
-        if (!args.skin.empty()) {
-            in.skin = read_mask(args.skin, "skin");
-            require_size(in.skin, photo, "skin mask", args.skin);
-        }
-    }
+    BodyFitFiles files = read_body_fit_files(args.image, args.joints, args.silhouette, args.skin, args.labels);
+    const cv::Mat& photo = files.photo;
+    body::FitInputs& in = files.inputs;
     in.height_m = args.height_m;
     if (!args.gender.empty()) in.gender = body::parse_gender(args.gender);
 
@@ -112,32 +73,7 @@ void run_fit_body(const FitArgs& args) {
     const body::FitQuality quality = body::fit_quality(model, in, fit, summary);
     const body::ShapedBody shaped = body::shape_from_coefficients(model, fit.coefficients);
 
-    nlohmann::json j;
-    j["format"] = "drape.body_fit";
-    j["version"] = 1;
-    j["image"] = {{"file", args.image}, {"width", photo.cols}, {"height", photo.rows}};
-    j["pose"] = to_json(fit.pose);
-    j["shape"] = to_json(fit.shape);
-    j["coefficients"] = std::vector<double>(fit.coefficients.data(),
-                                            fit.coefficients.data() + fit.coefficients.size());
-    j["coefficient_names"] = model.shape_names;
-    j["camera"] = to_json(fit.camera);
-    const double shift = origin_offset(joints.origin);
-    nlohmann::json pts = nlohmann::json::array();
-    for (int i = 0; i < body::kImageJointCount; ++i)
-        pts.push_back({fit.joints_2d(i, 0) - shift, fit.joints_2d(i, 1) - shift});
-    j["joints_2d"] = pts;
-    j["joint_names"] = std::vector<std::string>(body::kImageJointNames.begin(), body::kImageJointNames.end());
-    j["pixel_origin"] = origin_name(joints.origin);
-    j["fit"] = {{"termination", termination_name(summary.termination)},
-                {"message", summary.message},
-                {"iterations", summary.iterations},
-                {"seconds", summary.seconds},
-                {"mean_joint_error_px", summary.mean_joint_error_px},
-                {"person_height_px", quality.person_height_px},
-                {"mean_joint_error_percent", quality.mean_joint_error_percent},
-                {"person_iou", quality.person_iou}};
-    if (quality.skin_coverage >= 0) j["fit"]["skin_coverage"] = quality.skin_coverage;
+    const nlohmann::json j = body_fit_json(args.image, files, model, fit, summary, quality);
 
     const fs::path dir(args.out);
     write_json_file(dir / "body.json", j);

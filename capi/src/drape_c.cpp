@@ -1,8 +1,12 @@
-// The C facade: every entry point converts exceptions into a drape_status and a per-thread
-// message; nothing throws across the boundary.
-#include <drape/drape.h>
+// The C facade, part 1: errors, version, memory, cancel flags and monitors; bodies (create,
+// shape, pose, measure, fit, export). Every entry point converts exceptions into a
+// drape_status and a per-thread message; nothing throws across the boundary.
+#include "capi_internal.hpp"
 
-#include <drape/body/body_model.hpp>
+#include <drape/io/body_fit_files.hpp>
+#include <drape/io/body_json.hpp>
+
+#include <drape/body/fit_body.hpp>
 #include <drape/body/measurements.hpp>
 #include <drape/body/model_io.hpp>
 #include <drape/body/pose.hpp>
@@ -15,67 +19,150 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
 #include <string>
-
-struct drape_body_model_s {
-    std::shared_ptr<const drape::body::BodyModel> model;
-};
-
-struct drape_body_s {
-    std::shared_ptr<const drape::body::BodyModel> model;
-    drape::body::SemanticShape shape;
-    drape::body::ShapedBody shaped;
-    drape::body::Pose pose;
-    drape::body::PosedBody posed;
-};
 
 namespace {
 
 namespace db = drape::body;
+using namespace drape::capi;
 
 thread_local std::string g_last_error;
 
-// Records the message of a failure and returns `status`. The message is built here, inside
-// a try block: building it may itself run out of memory (also while handling bad_alloc), and
-// nothing may throw across the boundary. Then the message is left empty.
-template <class MakeMessage>
-drape_status fail(drape_status status, MakeMessage&& make_message) noexcept {
+// The error function of drape_set_error_function: process-wide, read under the lock and
+// called outside it.
+struct ErrorFunction {
+    std::mutex mutex;
+    drape_error_function function = nullptr;
+    void* user = nullptr;
+};
+ErrorFunction& error_function() {
+    static ErrorFunction f;
+    return f;
+}
+
+}  // namespace
+
+namespace drape::capi {
+
+drape_status report_failure(drape_status status, const std::string* message) noexcept {
     try {
-        g_last_error = make_message();
+        if (message) g_last_error = *message;
+        else g_last_error.clear();
     } catch (...) {
         g_last_error.clear();
     }
+    drape_error_function function = nullptr;
+    void* user = nullptr;
+    {
+        ErrorFunction& f = error_function();
+        std::lock_guard<std::mutex> lock(f.mutex);
+        function = f.function;
+        user = f.user;
+    }
+    if (function) function(user, status, g_last_error.c_str());
     return status;
 }
 
-template <class F>
-drape_status guarded(const char* function, F&& body) {
-    try {
-        return body();
-    } catch (const drape::InvalidInput& e) {
-        return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&] { return std::string(function) + ": " + e.what(); });
-    } catch (const drape::IoError& e) {
-        return fail(DRAPE_ERROR_IO, [&] { return std::string(function) + ": " + e.what(); });
-    } catch (const std::bad_alloc&) {
-        return fail(DRAPE_ERROR_OUT_OF_MEMORY, [&] { return std::string(function) + ": out of memory"; });
-    } catch (const std::exception& e) {
-        return fail(DRAPE_ERROR_INTERNAL, [&] { return std::string(function) + ": internal error: " + e.what(); });
-    } catch (...) {
-        return fail(DRAPE_ERROR_INTERNAL, [&] { return std::string(function) + ": unknown internal error"; });
-    }
+char* copy_string(const std::string& s) {
+    char* out = static_cast<char*>(std::malloc(s.size() + 1));
+    if (!out) throw std::bad_alloc();
+    std::memcpy(out, s.c_str(), s.size() + 1);
+    return out;
 }
 
-#define DRAPE_REQUIRE_ARG(cond, msg) \
-    if (!(cond))                     \
-    return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&, function = __func__] { return std::string(function) + ": " + (msg); })
+namespace {
+template <int Cols>
+Eigen::Matrix<double, Eigen::Dynamic, Cols> real_rows(const double* values, size_t count, const char* what) {
+    if (!values) throw drape::InvalidInput(std::string(what) + " must not be NULL");
+    Eigen::Matrix<double, Eigen::Dynamic, Cols> M(static_cast<Eigen::Index>(count), Cols);
+    for (size_t r = 0; r < count; ++r)
+        for (int c = 0; c < Cols; ++c) {
+            const double v = values[r * Cols + c];
+            if (!std::isfinite(v))
+                throw drape::InvalidInput(std::string(what) + "[" + std::to_string(r * Cols + c) + "] = " +
+                                          std::to_string(v) + " is not finite");
+            M(static_cast<Eigen::Index>(r), c) = v;
+        }
+    return M;
+}
+}  // namespace
+
+Eigen::MatrixX3d rows3(const double* values, size_t count, const char* what) { return real_rows<3>(values, count, what); }
+Eigen::MatrixX2d rows2(const double* values, size_t count, const char* what) { return real_rows<2>(values, count, what); }
+
+Eigen::MatrixX3i index_rows3(const int32_t* values, size_t count, size_t bound, const char* what) {
+    if (!values) throw drape::InvalidInput(std::string(what) + " must not be NULL");
+    Eigen::MatrixX3i M(static_cast<Eigen::Index>(count), 3);
+    for (size_t r = 0; r < count; ++r)
+        for (int c = 0; c < 3; ++c) {
+            const int32_t v = values[r * 3 + c];
+            if (v < 0 || static_cast<size_t>(v) >= bound)
+                throw drape::InvalidInput(std::string(what) + "[" + std::to_string(r * 3 + c) + "] = " +
+                                          std::to_string(v) + " is outside [0, " + std::to_string(bound) + ")");
+            M(static_cast<Eigen::Index>(r), c) = v;
+        }
+    return M;
+}
 
 std::shared_ptr<const db::BodyModel> default_model_ptr() {
     // Non-owning alias of the library's cached built-in model.
-    return std::shared_ptr<const db::BodyModel>(&db::BodyModel::default_model(),
-                                                [](const db::BodyModel*) {});
+    return std::shared_ptr<const db::BodyModel>(&db::BodyModel::default_model(), [](const db::BodyModel*) {});
 }
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+std::optional<db::Gender> gender_of(int32_t gender, const char* arg) {
+    if (gender == DRAPE_GENDER_FEMALE) return db::Gender::female;
+    if (gender == DRAPE_GENDER_MALE) return db::Gender::male;
+    if (gender == DRAPE_GENDER_UNSPECIFIED) return std::nullopt;
+    throw drape::InvalidInput(std::string(arg) + " = " + std::to_string(gender) + " is not a drape_gender value");
+}
+
+Monitor::Monitor(const drape_monitor* monitor, const char* operation)
+    : operation_(operation), start_(std::chrono::steady_clock::now()) {
+    if (!monitor) return;
+    if (!holds(*monitor, &drape_monitor::progress))
+        throw drape::InvalidInput("monitor->struct_size is " + std::to_string(monitor->struct_size) +
+                                  ": set it to sizeof(drape_monitor) before the call");
+    progress_ = monitor->progress;
+    if (holds(*monitor, &drape_monitor::user)) user_ = monitor->user;
+    if (holds(*monitor, &drape_monitor::cancel)) cancel_ = monitor->cancel;
+}
+
+bool Monitor::cancelled() const {
+    return stopped_.load(std::memory_order_relaxed) || (cancel_ && cancel_->set.load(std::memory_order_relaxed));
+}
+
+double Monitor::seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+bool Monitor::report(const std::string& stage, int garment, int round, int64_t step, double fraction,
+                     double eta_seconds) {
+    if (cancelled()) return false;
+    if (!progress_) return true;
+    drape_progress p;
+    p.struct_size = sizeof p;
+    p.operation = operation_;
+    p.stage = stage.c_str();
+    p.garment = garment;
+    p.round = round;
+    p.step = step;
+    p.fraction = fraction;
+    p.seconds = seconds();
+    p.eta_seconds = eta_seconds;
+    if (progress_(user_, &p) == 0) stopped_ = true;
+    return !cancelled();
+}
+
+drape_status cancelled(const char* function) {
+    return fail(DRAPE_ERROR_CANCELLED, [&] { return std::string(function) + ": cancelled"; });
+}
+
+}  // namespace drape::capi
+
+namespace {
 
 double drape_shape_params::*param_field(db::Semantic s) {
     switch (s) {
@@ -93,59 +180,7 @@ double drape_shape_params::*param_field(db::Semantic s) {
     return nullptr;
 }
 
-// Versioned structs (docs/c-api.md, "Versioned structs"): struct_size is the size of the
-// struct the caller was compiled with, which may be older (smaller) or newer (larger) than
-// ours. A field is read or written only when it lies wholly inside struct_size; struct_size
-// itself is never changed by the library.
-template <class S, class T>
-size_t end_of(T S::*field) {
-    static const S probe{};
-    return static_cast<size_t>(reinterpret_cast<const char*>(&(probe.*field)) -
-                               reinterpret_cast<const char*>(&probe)) +
-           sizeof(T);
-}
-
-template <class S, class T>
-bool holds(const S& s, T S::*field) {
-    return end_of(field) <= s.struct_size;
-}
-
-template <class S, class T>
-void put(S& s, T S::*field, const T& value) {
-    if (holds(s, field)) s.*field = value;
-}
-
-// A struct must at least hold its first field after struct_size; a smaller struct_size
-// means the caller did not set it.
-template <class S, class T>
-drape_status check_struct_size(const S& s, T S::*first_field, const char* function, const char* arg,
-                               const char* type) {
-    if (holds(s, first_field)) return DRAPE_OK;
-    return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&] {
-        return std::string(function) + ": " + arg + "->struct_size is " + std::to_string(s.struct_size) +
-               ": set it to sizeof(" + type + ") before the call";
-    });
-}
-
 void repose(drape_body_s& b) { b.posed = db::pose_body(*b.model, b.shaped, b.pose); }
-
-// The size-query protocol: report the size, then copy (converting, row-major) if the buffer
-// fits. M is #rows x 3.
-template <class Out, class Matrix>
-drape_status copy_rows(const Matrix& M, Out* out, size_t capacity, size_t* required, const char* what) {
-    const size_t n = static_cast<size_t>(M.size());
-    if (required) *required = n;
-    if (!out) return DRAPE_OK;
-    if (capacity < n)
-        return fail(DRAPE_ERROR_INVALID_ARGUMENT, [&] {
-            return std::string(what) + ": buffer holds " + std::to_string(capacity) + " values, " +
-                   std::to_string(n) + " needed";
-        });
-    const Eigen::Index cols = M.cols();
-    for (Eigen::Index r = 0; r < M.rows(); ++r)
-        for (Eigen::Index c = 0; c < cols; ++c) out[r * cols + c] = static_cast<Out>(M(r, c));
-    return DRAPE_OK;
-}
 
 void fill_shape_params(drape_shape_params& p, int32_t gender, const double* values) {
     put(p, &drape_shape_params::gender, gender);
@@ -167,6 +202,44 @@ void fill_measurements(drape_measurements& out, const db::BodyMeasurements& m) {
 
 }  // namespace
 
+namespace drape::capi {
+
+template <>
+struct StructTraits<drape_fit_inputs> {
+    static constexpr const char* name = "drape_fit_inputs";
+    static auto fields() {
+        using S = drape_fit_inputs;
+        return std::make_tuple(&S::image_path, &S::joints_path, &S::silhouette_path, &S::skin_path, &S::labels_path,
+                               &S::height_m, &S::gender);
+    }
+    static drape_fit_inputs defaults() {
+        drape_fit_inputs d{};
+        d.struct_size = sizeof d;
+        d.height_m = kNaN;
+        d.gender = DRAPE_GENDER_UNSPECIFIED;
+        return d;
+    }
+};
+
+template <>
+struct StructTraits<drape_fit_options> {
+    static constexpr const char* name = "drape_fit_options";
+    static auto fields() {
+        using S = drape_fit_options;
+        return std::make_tuple(&S::focal_px, &S::threads, &S::fit_shape);
+    }
+    static drape_fit_options defaults() {
+        drape_fit_options d{};
+        d.struct_size = sizeof d;
+        d.focal_px = 0;
+        d.threads = 2;
+        d.fit_shape = 1;
+        return d;
+    }
+};
+
+}  // namespace drape::capi
+
 extern "C" {
 
 // DRAPE_VERSION_STRING is CMake's PROJECT_VERSION (capi/CMakeLists.txt).
@@ -186,6 +259,51 @@ const char* drape_status_string(drape_status status) {
 }
 
 const char* drape_last_error_message(void) { return g_last_error.c_str(); }
+
+void drape_set_error_function(drape_error_function function, void* user) {
+    ErrorFunction& f = error_function();
+    std::lock_guard<std::mutex> lock(f.mutex);
+    f.function = function;
+    f.user = user;
+}
+
+void drape_free(void* memory) { std::free(memory); }
+
+drape_status drape_cancel_flag_create(drape_cancel_flag* out_flag) {
+    DRAPE_REQUIRE_ARG(out_flag, "out_flag must not be NULL");
+    *out_flag = nullptr;
+    return guarded(__func__, [&] {
+        *out_flag = new drape_cancel_flag_s();
+        return DRAPE_OK;
+    });
+}
+
+void drape_cancel_flag_destroy(drape_cancel_flag flag) { delete flag; }
+
+void drape_cancel_flag_set(drape_cancel_flag flag) {
+    if (flag) flag->set.store(true, std::memory_order_relaxed);
+}
+
+void drape_cancel_flag_reset(drape_cancel_flag flag) {
+    if (flag) flag->set.store(false, std::memory_order_relaxed);
+}
+
+int32_t drape_cancel_flag_is_set(drape_cancel_flag flag) {
+    return flag && flag->set.load(std::memory_order_relaxed) ? 1 : 0;
+}
+
+drape_status drape_monitor_init(drape_monitor* m) {
+    DRAPE_REQUIRE_ARG(m, "monitor must not be NULL");
+    if (const drape_status st = check_struct_size(*m, &drape_monitor::progress, __func__, "monitor", "drape_monitor"))
+        return st;
+    put(*m, &drape_monitor::progress, static_cast<drape_progress_function>(nullptr));
+    put(*m, &drape_monitor::user, static_cast<void*>(nullptr));
+    put(*m, &drape_monitor::cancel, static_cast<drape_cancel_flag>(nullptr));
+    return DRAPE_OK;
+}
+
+drape_status drape_fit_inputs_init(drape_fit_inputs* inputs) { return init_struct(inputs, __func__, "inputs"); }
+drape_status drape_fit_options_init(drape_fit_options* options) { return init_struct(options, __func__, "options"); }
 
 drape_status drape_body_model_load(const char* path, drape_body_model* out_model) {
     DRAPE_REQUIRE_ARG(path && out_model, "path and out_model must not be NULL");
@@ -328,17 +446,17 @@ drape_status drape_body_get_counts(drape_body body, size_t* vertex_count, size_t
 // The buffers are written without temporaries; the barrier still covers all the work.
 drape_status drape_body_get_vertices(drape_body body, double* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    return guarded(__func__, [&] { return copy_rows(body->posed.vertices, out, capacity, required, __func__); });
+    return guarded(__func__, [&, function = __func__] { return copy_rows(body->posed.vertices, out, capacity, required, function); });
 }
 
 drape_status drape_body_get_joints(drape_body body, double* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    return guarded(__func__, [&] { return copy_rows(body->posed.joints, out, capacity, required, __func__); });
+    return guarded(__func__, [&, function = __func__] { return copy_rows(body->posed.joints, out, capacity, required, function); });
 }
 
 drape_status drape_body_get_faces(drape_body body, int32_t* out, size_t capacity, size_t* required) {
     DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    return guarded(__func__, [&] { return copy_rows(body->model->faces, out, capacity, required, __func__); });
+    return guarded(__func__, [&, function = __func__] { return copy_rows(body->model->faces, out, capacity, required, function); });
 }
 
 drape_status drape_body_measure(drape_body body, drape_measurements* out) {
@@ -364,6 +482,66 @@ drape_status drape_body_export(drape_body body, const char* path) {
         } else {
             throw drape::InvalidInput("path '" + p.string() + "' must end in .glb or .obj");
         }
+        return DRAPE_OK;
+    });
+}
+
+drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, const drape_fit_options* options,
+                            const drape_monitor* monitor, char** out_json) {
+    DRAPE_REQUIRE_ARG(body, "body must not be NULL");
+    DRAPE_REQUIRE_ARG(inputs, "inputs must not be NULL");
+    if (out_json) *out_json = nullptr;
+    return guarded(__func__, [&, function = __func__] {
+        const drape_fit_inputs in = read_struct(inputs, "inputs");
+        const drape_fit_options opt = read_struct(options, "options");
+        if (!in.image_path) throw drape::InvalidInput("inputs->image_path must not be NULL");
+        if (!in.joints_path) throw drape::InvalidInput("inputs->joints_path must not be NULL");
+        Monitor mon(monitor, "fit_body");
+        drape::io::BodyFitFiles files = drape::io::read_body_fit_files(
+            in.image_path, in.joints_path, str(in.silhouette_path), str(in.skin_path), str(in.labels_path));
+        if (!std::isnan(in.height_m)) files.inputs.height_m = in.height_m;
+        files.inputs.gender = gender_of(in.gender, "inputs->gender");
+        db::FitOptions fo;
+        fo.threads = opt.threads;
+        fo.fit_shape = opt.fit_shape != 0;
+        if (opt.focal_px != 0) {
+            fo.camera = db::CameraModel::pinhole;
+            fo.focal_px = opt.focal_px;
+        }
+        std::string why;
+        if (!fo.is_valid(&why)) throw drape::InvalidInput("options: " + why);
+        fo.progress = [&](double fraction) { return mon.report("fitting", -1, 0, 0, fraction); };
+        if (!mon.report("reading", -1, 0, 0, 0)) return cancelled(function);
+        db::BodyFit fit;
+        const db::FitSummary summary = db::fit_body(*body->model, files.inputs, fo, fit);
+        if (summary.termination == db::Termination::cancelled || mon.cancelled()) return cancelled(function);
+        if (!summary.usable())
+            return fail(DRAPE_ERROR_NO_CONVERGENCE, [&] { return "drape_body_fit: " + summary.brief_report(); });
+        db::ShapedBody shaped = db::shape_from_coefficients(*body->model, fit.coefficients);
+        db::PosedBody posed = db::pose_body(*body->model, shaped, fit.pose);
+        char* json = nullptr;
+        if (out_json) {
+            const db::FitQuality quality = db::fit_quality(*body->model, files.inputs, fit, summary);
+            json = copy_string(
+                drape::io::body_fit_json(in.image_path, files, *body->model, fit, summary, quality).dump(2));
+        }
+        // Nothing below throws: the body changes only when the whole call succeeds.
+        body->shape = fit.shape;
+        body->shaped = std::move(shaped);
+        body->pose = fit.pose;
+        body->posed = std::move(posed);
+        if (out_json) *out_json = json;
+        return DRAPE_OK;
+    });
+}
+
+drape_status drape_body_to_json(drape_body body, char** out_json) {
+    DRAPE_REQUIRE_ARG(body, "body must not be NULL");
+    DRAPE_REQUIRE_ARG(out_json, "out_json must not be NULL");
+    *out_json = nullptr;
+    return guarded(__func__, [&] {
+        const nlohmann::json j = {{"shape", drape::io::to_json(body->shape)}, {"pose", drape::io::to_json(body->pose)}};
+        *out_json = copy_string(j.dump(2));
         return DRAPE_OK;
     });
 }

@@ -95,6 +95,23 @@ nlohmann::json table_json(const Table& t) {
 
 }  // namespace
 
+nlohmann::json to_json(const garment::DrapeSummary& d) {
+    return {{"vertices", d.vertices},
+            {"stitches", d.stitches},
+            {"seam_gap_max_m", d.seam_gap_max_m},
+            {"penetration_max_m", d.penetration_max_m},
+            {"vertices_inside", d.vertices_inside},
+            {"self_intersections", d.self_intersections},
+            {"mean_drop_m", d.mean_drop_m},
+            {"converged", d.converged},
+            {"usable", d.usable()},
+            {"steps", d.steps},
+            {"steps_to_close_seams", d.steps_to_close_seams},
+            {"welded", d.welded},
+            {"message", d.message},
+            {"seconds_drape", d.seconds}};
+}
+
 nlohmann::json material_to_json(const cloth::Material& m, const std::string& base_fabric) {
     return {{"bending_scale", m.bending_scale},
             {"stretching_scale", m.stretching_scale},

@@ -176,6 +176,11 @@ bool DrapeRun::run_steps(int budget, int min_steps, DrapePhase phase) {
             sim_.move_obstacle(body_at(body_path_, motion_steps_ * options_.simulator.time_step_s, motion_s_));
         }
         const cloth::StepSummary s = sim_.step();
+        if (s.termination == cloth::StepTermination::cancelled) {  // options.simulator.on_iteration said stop
+            summary_.termination = DrapeTermination::cancelled;
+            summary_.message = "cancelled in step " + std::to_string(summary_.steps + 1);
+            return false;
+        }
         if (!s.usable()) {
             summary_.termination = DrapeTermination::step_failed;
             summary_.message = "step " + std::to_string(summary_.steps + 1) + ": " + s.brief_report();
@@ -283,11 +288,15 @@ void DrapeRun::solve_static() {
 }
 
 void DrapeRun::measure(Eigen::MatrixX3d& out_positions) {
-    const cloth::ContactReport r = sim_.contact_report();
-    summary_.seam_gap_max_m = r.max_stitch_gap_m;
-    summary_.penetration_max_m = r.max_penetration_m;
-    summary_.vertices_inside = r.vertices_inside;
-    summary_.self_intersections = r.self_intersections;
+    // A cancelled drape returns at once: the contact report (self-intersections above all)
+    // would cost a step's time, for figures of a state nobody asked for.
+    if (summary_.termination != DrapeTermination::cancelled) {
+        const cloth::ContactReport r = sim_.contact_report();
+        summary_.seam_gap_max_m = r.max_stitch_gap_m;
+        summary_.penetration_max_m = r.max_penetration_m;
+        summary_.vertices_inside = r.vertices_inside;
+        summary_.self_intersections = r.self_intersections;
+    }
     summary_.converged = summary_.termination == DrapeTermination::converged;
     out_positions = garment_positions(sim_.positions());
     const Eigen::Vector3d g = options_.simulator.gravity_m_per_s2;

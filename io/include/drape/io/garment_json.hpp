@@ -5,6 +5,7 @@
 
 #include <drape/body/body_model.hpp>
 #include <drape/body/measurements.hpp>
+#include <drape/garment/drape_garment.hpp>
 #include <drape/garment/garment_mesh.hpp>
 #include <drape/garment/garment_sizing.hpp>
 #include <drape/garment/garment_type.hpp>
@@ -43,6 +44,11 @@ nlohmann::json material_to_json(const cloth::Material& material, const std::stri
 /// table of the wrong shape, or a scale or density that is not positive.
 cloth::Material material_from_json(const nlohmann::json& j, const std::string& file,
                                    std::string* base_fabric = nullptr);
+
+/// A drape's figures as `drape dress` writes them in summary.json: vertices, stitches,
+/// seam_gap_max_m, penetration_max_m, vertices_inside, self_intersections, mean_drop_m,
+/// converged, usable, steps, steps_to_close_seams, welded, message, seconds_drape.
+nlohmann::json to_json(const garment::DrapeSummary& d);
 
 /// The garments of `--garment` ("skirt", "tshirt+pants", ...: template names joined by '+')
 /// in layering order, inner first (garment::outfit_layers).

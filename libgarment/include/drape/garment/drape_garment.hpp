@@ -101,7 +101,7 @@ enum class DrapeTermination {
     not_settled,         ///< max_steps ran out before seams closed and the cloth came to rest
     static_failed,       ///< the final equilibrium solve did not converge
     step_failed,         ///< a simulation step failed (non-finite or line search)
-    cancelled,           ///< on_progress returned false
+    cancelled,           ///< on_progress (or the simulator's on_iteration) returned false
 };
 
 struct DrapeSummary {
