@@ -16,5 +16,9 @@ if [ "${DRAPE_SKIP_SANITIZERS:-0}" != 1 ]; then
     drape_capi_thread_test drape_capi_abi_test drape_capi_shared
   (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j"$jobs" --timeout 1800 -R "^(body|capi)")
+fi
+# ThreadSanitizer (the C API's two-thread test): opt-in until its instrumented build of every
+# library has been timed against CI's 90 minutes (docs/c-api.md, "Threads").
+if [ "${DRAPE_TSAN:-0}" = 1 ]; then
   "$here/scripts/test_tsan.sh" "$here/build-tsan"
 fi
