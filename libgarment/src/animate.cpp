@@ -34,11 +34,6 @@ double max_speed(const cloth::Simulator& sim) {
     return sim.velocities().rows() ? sim.velocities().rowwise().norm().maxCoeff() : 0.0;
 }
 
-/// Largest body vertex displacement from a to b after removing the root's translation
-/// (which the cloth follows by inertia).
-double body_step(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, const Eigen::Vector3d& root_shift) {
-    return ((b - a).rowwise() - root_shift.transpose()).rowwise().norm().maxCoeff();
-}
 
 }  // namespace
 
@@ -139,8 +134,7 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         Eigen::MatrixX3d a = body_at(frames.frames.front());
         for (int k = 1; k < K; ++k) {
             Eigen::MatrixX3d b = body_at(frames.frames[std::size_t(k)]);
-            fastest = std::max(fastest, body_step(a, b, frames.frames[std::size_t(k)].translation -
-                                                            frames.frames[std::size_t(k - 1)].translation));
+            fastest = std::max(fastest, (b - a).rowwise().norm().maxCoeff());
             a = std::move(b);
         }
     }
@@ -210,6 +204,13 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         if (!advance(previous, next)) {
             summary.message = "blending into the motion: " + summary.message;
             summary.seconds_blend = seconds_since(t_blend);
+    // The motion starts at its own pace (a walk at 1.2 m/s): the cloth is given the root's
+    // velocity of the first frame, as if it had been moving with the body, instead of being
+    // hit by it from rest (which left the front of a skirt 4 cm inside the legs).
+    if (K >= 2) {
+        const Eigen::Vector3d root_velocity = (frames.frames[1].translation - frames.frames[0].translation) * options.fps;
+        sim.set_velocities(sim.velocities().rowwise() + root_velocity.transpose());
+    }
             summary.seconds = seconds_since(start);
             return summary;
         }
@@ -222,6 +223,13 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         }
     }
     summary.seconds_blend = seconds_since(t_blend);
+    // The motion starts at its own pace (a walk at 1.2 m/s): the cloth is given the root's
+    // velocity of the first frame, as if it had been moving with the body, instead of being
+    // hit by it from rest (which left the front of a skirt 4 cm inside the legs).
+    if (K >= 2) {
+        const Eigen::Vector3d root_velocity = (frames.frames[1].translation - frames.frames[0].translation) * options.fps;
+        sim.set_velocities(sim.velocities().rowwise() + root_velocity.transpose());
+    }
 
     double frame_seconds = 0, cpu_seconds = 0;
     for (int k = 0; k < K; ++k) {

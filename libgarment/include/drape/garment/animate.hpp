@@ -31,12 +31,15 @@ struct AnimateOptions {
     /// motion's whole duration. >= 0.
     double seconds = 0;
     /// Before the first frame, the body moves from the pose the outfit was draped in to the
-    /// motion's first pose over this time (s, smoothstep, simulated, not output), >= 0.
+    /// motion's first pose over this time (s, smoothstep, simulated, not output), >= 0. The
+    /// cloth then gets the root's velocity of the motion's first frame (a walk starts at
+    /// walking speed, not from rest).
     double blend_s = 0.5;
     /// Simulation steps per frame (the same for the whole run): enough that in the motion's
-    /// fastest frame no body vertex moves farther than max_body_step_m in one step (after
-    /// removing the root's translation, which the cloth follows by inertia), within
-    /// [min_substeps, max_substeps].
+    /// fastest frame no body vertex moves farther than max_body_step_m in one step, within
+    /// [min_substeps, max_substeps]. (Leaving the root's translation out, as the cloth keeps
+    /// its speed by inertia, was tried: with air drag the skirt fell behind and the legs
+    /// walked 4-6 cm into it at 4 steps per 15 fps frame.)
     double max_body_step_m = 5e-3;
     int min_substeps = 2;
     int max_substeps = 8;
