@@ -21,6 +21,7 @@ packages=(
   libcgal-dev            # pattern triangulation (garments)
   libembree-dev          # ray-traced renders (app layer)
   catch2                 # tests
+  assimp-testmodels      # BVH motion captures for the animation tests (skipped when absent)
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -31,6 +32,12 @@ if ((${#missing[@]})); then
   if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The Khronos glTF-Validator, run by the .glb tests (skipped when absent): npm package, global.
+if command -v npm >/dev/null && ! NODE_PATH="$(npm root -g)" node -e "require('gltf-validator')" 2>/dev/null; then
+  echo "setup: installing the npm package gltf-validator"
+  npm install -g --silent gltf-validator || echo "setup: gltf-validator not installed (the glb validation tests will skip)"
 fi
 
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null

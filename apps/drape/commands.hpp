@@ -30,6 +30,10 @@ void add_eval_segment_command(CLI::App& app);
 void add_recover_command(CLI::App& app);
 void add_eval_recover_commands(CLI::App& app);
 
+/// `drape animate --garment RESULT_DIR[:N] ... [--motion walk|M.bvh] [--wind X,Y,Z] [--seconds S]
+///  [--fps F] --out DIR` and `drape eval-animate --out R.json` (docs/animation.md)
+void add_animate_command(CLI::App& app);
+
 /// `drape pattern --garment skirt|pants|tshirt|dress --sizing G.json|auto [--body P.json]
 ///  [--edge CM] --out DIR` (pattern.svg/dxf/json, pattern_mesh.obj, summary.json)
 void add_pattern_command(CLI::App& app);

@@ -18,8 +18,9 @@
 #include <drape/vision/image_io.hpp>
 #include <drape/vision/strokes.hpp>
 
+#include "staging.hpp"
+
 #include <sstream>
-#include <unistd.h>
 
 namespace drape::io {
 
@@ -74,34 +75,7 @@ nlohmann::json garment_result_json(const recover::RecoveredGarment& g) {
             {"seconds", {{"sizing", g.seconds_sizing}, {"material", g.seconds_material}}}};
 }
 
-// Every output goes to a staging folder beside DIR first; only a complete set is moved in
-// (each file by an atomic rename), so a failed or cancelled run leaves DIR as it was.
-class Staging {
-  public:
-    explicit Staging(const fs::path& out) : out_(out) {
-        make_output_dir(out_);
-        dir_ = out_ / (".partial-" + std::to_string(::getpid()));
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-        if (!fs::create_directories(dir_, ec))
-            throw IoError("cannot create the staging folder '" + dir_.string() + "': " + ec.message());
-    }
-    ~Staging() {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-    fs::path operator/(const std::string& name) const { return dir_ / name; }
-    void commit() {
-        for (const auto& e : fs::directory_iterator(dir_)) {
-            std::error_code ec;
-            fs::rename(e.path(), out_ / e.path().filename(), ec);
-            if (ec) throw IoError("cannot move '" + e.path().string() + "' into '" + out_.string() + "': " + ec.message());
-        }
-    }
-
-  private:
-    fs::path out_, dir_;
-};
+using detail::Staging;
 
 }  // namespace
 

@@ -127,6 +127,43 @@ void export_glb(const std::filesystem::path& path, const BodyModel& model,
     gltf::write_glb(path, build_scene(model, shaped, pose));
 }
 
+void export_animated_glb(const std::filesystem::path& path, const BodyModel& model, const ShapedBody& shaped,
+                         const Motion& motion, const std::vector<FrameMesh>& meshes) {
+    std::string why;
+    require(motion.is_valid(&why), "export_animated_glb: motion: ", why);
+    const Eigen::Index nv = model.template_vertices.rows();
+    require(shaped.vertices.rows() == nv && shaped.vertices.cols() == 3, "export_animated_glb: shaped.vertices is ",
+            shaped.vertices.rows(), " x ", shaped.vertices.cols(), ", expected ", nv, " x 3");
+    check_triangle_mesh("export_animated_glb", shaped.vertices, model.faces);
+    gltf::GlbScene scene = build_scene(model, shaped, motion.frames.front());
+    gltf::GlbAnimation animation;
+    animation.name = "motion";
+    animation.joint_local.assign(kJointCount, {});
+    for (std::size_t k = 0; k < motion.frames.size(); ++k) {
+        animation.times_s.push_back(double(k) / motion.fps);
+        const auto local = local_transforms(forward_kinematics(shaped.joints, motion.frames[k]));
+        for (int j = 0; j < kJointCount; ++j)
+            animation.joint_local[std::size_t(j)].push_back(local[std::size_t(j)]);
+    }
+    for (const FrameMesh& m : meshes) {
+        require(m.frames.size() == motion.frames.size(), "export_animated_glb: mesh '", m.name, "' has ",
+                m.frames.size(), " frames, the motion ", motion.frames.size());
+        gltf::GlbMesh g;
+        g.mesh_name = m.name;
+        g.node_name = m.name;
+        g.material_name = m.name;
+        g.V = m.frames.front();
+        g.F = m.F;
+        g.N = vertex_normals(g.V, g.F);
+        g.UV = m.UV;
+        g.base_colour_linear = m.colour_linear;
+        g.morph_targets = m.frames;
+        scene.meshes.push_back(std::move(g));
+    }
+    scene.animation = std::move(animation);
+    gltf::write_glb(path, scene);
+}
+
 void export_obj(const std::filesystem::path& path, const Eigen::MatrixXd& V,
                 const Eigen::MatrixXi& F) {
     check_triangle_mesh("export_obj", V, F);

@@ -238,7 +238,7 @@ DrapeSummary dress_and_drape(const Pattern& pattern, const GarmentMesh& mesh, co
                          options, out_positions);
 }
 
-namespace {
+namespace detail {
 
 // The garments of an outfit as one mesh: vertices, faces, stitches and boundary loops
 // renumbered one garment after the other; each garment's flat layout is shifted 10 m along
@@ -296,7 +296,23 @@ GarmentMesh concatenate(const std::vector<GarmentMesh>& meshes, std::vector<int>
     return out;
 }
 
-}  // namespace
+void outfit_fabrics(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
+                    const std::vector<cloth::Material>& materials, double waistband_width_cm,
+                    double waistband_stretching_factor, std::vector<cloth::Material>& fabrics,
+                    std::vector<int>& face_material) {
+    const int n = int(meshes.size());
+    fabrics = materials;
+    for (const cloth::Material& m : materials) fabrics.push_back(waistband_material(m, waistband_stretching_factor));
+    face_material.clear();
+    for (int g = 0; g < n; ++g) {
+        const size_t f0 = face_material.size();
+        face_material.insert(face_material.end(), size_t(meshes[size_t(g)].cloth.face_count()), g);
+        for (int f : waistband_faces(patterns[size_t(g)], meshes[size_t(g)], waistband_width_cm))
+            face_material[f0 + size_t(f)] = n + g;
+    }
+}
+
+}  // namespace detail
 
 DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
                                     const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
@@ -339,7 +355,7 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
                                                 J(body::Joint::neck)};
     const double gap = options.simulator.contact_thickness_m + 0.001;
     std::vector<int> first;
-    const GarmentMesh all = concatenate(meshes, &first);
+    const GarmentMesh all = detail::concatenate(meshes, &first);
     // Dresses every garment (those without sleeves with `sleeveless_passes` placement
     // passes, 0 = automatic), each outside the ones before it; returns the layered state and
     // its crossings. A garment with sleeves always gets the automatic count, so its dressed
@@ -397,17 +413,10 @@ DrapeSummary dress_and_drape_outfit(const std::vector<Pattern>& patterns, const 
     // Garment g's faces follow those of the garments before it (concatenate's order); its
     // waistband's faces are of materials[n + g], its fabric stiffened.
     require(options.is_valid(&why), "dress_and_drape_outfit: ", why);
-    const int n = int(meshes.size());
-    std::vector<cloth::Material> fabrics = materials;
-    for (const cloth::Material& m : materials) fabrics.push_back(waistband_material(m, options.waistband_stretching_factor));
+    std::vector<cloth::Material> fabrics;
     std::vector<int> face_material;
-    face_material.reserve(size_t(all.cloth.face_count()));
-    for (int g = 0; g < n; ++g) {
-        const size_t f0 = face_material.size();
-        face_material.insert(face_material.end(), size_t(meshes[size_t(g)].cloth.face_count()), g);
-        for (int f : waistband_faces(patterns[size_t(g)], meshes[size_t(g)], options.waistband_width_cm))
-            face_material[f0 + size_t(f)] = n + g;
-    }
+    detail::outfit_fabrics(patterns, meshes, materials, options.waistband_width_cm,
+                           options.waistband_stretching_factor, fabrics, face_material);
     Eigen::MatrixX3d X;
     const DrapeSummary s = drape_garment(all, X0, path, model.faces, fabrics, face_material, options, X);
     out_positions.clear();

@@ -4,6 +4,7 @@
 #include <drape/cloth/simulator.hpp>
 #include <drape/garment/drape_garment.hpp>
 #include <drape/garment/garment_mesh.hpp>
+#include <drape/garment/pattern.hpp>
 
 #include <Eigen/Core>
 
@@ -25,6 +26,20 @@ struct Welded {
 };
 Welded weld(const cloth::ClothMesh& source, const Eigen::MatrixX3d& positions, const Eigen::MatrixX3d& velocities,
             const std::vector<std::array<int, 2>>& stitches, Eigen::MatrixX3d* welded_velocities);
+
+/// The garments of an outfit as one mesh: vertices, faces, stitches and boundary loops
+/// renumbered one garment after the other (garment g's vertices start at first_vertex[g];
+/// a last entry holds the total); each garment's flat layout is shifted 10 m along u so that
+/// no two garments share pattern space.
+GarmentMesh concatenate(const std::vector<GarmentMesh>& meshes, std::vector<int>* first_vertex);
+
+/// The fabrics of an outfit concatenated in `meshes`' order: materials (one per garment)
+/// followed by their waistband versions; face_material gives each face its garment's fabric,
+/// or garment g's waistband fabric (index n + g) on its waistband faces (waistband_faces).
+void outfit_fabrics(const std::vector<Pattern>& patterns, const std::vector<GarmentMesh>& meshes,
+                    const std::vector<cloth::Material>& materials, double waistband_width_cm,
+                    double waistband_stretching_factor, std::vector<cloth::Material>& fabrics,
+                    std::vector<int>& face_material);
 
 /// Throws drape::InvalidInput unless the options, materials, per-face materials, initial
 /// positions (#V x 3) and body path (each #B x 3) fit the garment mesh.

@@ -3,11 +3,15 @@
 #pragma once
 
 #include <drape/body/body_model.hpp>
+#include <drape/body/motion.hpp>
 #include <drape/body/pose.hpp>
 
 #include <Eigen/Core>
 
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace drape::body {
 
@@ -38,6 +42,26 @@ BodyModel load_model(const std::filesystem::path& path);
 ///        drape::IoError if the file cannot be written.
 void export_glb(const std::filesystem::path& path, const BodyModel& model,
                 const ShapedBody& shaped, const Pose& pose);
+
+/// A mesh that moves frame by frame with an animated body (e.g. a simulated garment).
+struct FrameMesh {
+    std::string name;                    ///< its glTF mesh and node name (unique)
+    Eigen::MatrixXi F;                   ///< #F x 3
+    Eigen::MatrixXd UV;                  ///< #V x 2 (v upwards) or empty
+    std::vector<Eigen::MatrixXd> frames; ///< one #V x 3 position set per motion frame
+    std::optional<Eigen::Vector3d> colour_linear;  ///< base colour, linear RGB in [0, 1]
+};
+
+/// Writes an animation as a glTF 2.0 binary: the rigged body (as export_glb, posed in the
+/// first frame) with one animation "motion" whose key k at k / motion.fps sets every joint
+/// node's local transform (forward_kinematics of frame k), and each FrameMesh as a mesh
+/// whose morph targets are its frames, played by the same animation's weights channel
+/// (target k has weight 1 at key k). Blender imports the targets as shape keys driven by
+/// the action; three.js plays it with an AnimationMixer. Written atomically.
+/// 	hrow drape::InvalidInput on an invalid motion, a mesh without one frame per motion
+///        frame, or as export_glb and gltf::write_glb; drape::IoError if it cannot be written.
+void export_animated_glb(const std::filesystem::path& path, const BodyModel& model, const ShapedBody& shaped,
+                         const Motion& motion, const std::vector<FrameMesh>& meshes);
 
 /// Writes a triangle mesh (#V x 3, #F x 3) as OBJ with area-weighted vertex normals
 /// (exact decimal coordinates), atomically.

@@ -43,6 +43,22 @@ struct GlbMesh {
     /// Per vertex, its (joint, weight) pairs (at most 4, weights summing to 1) of
     /// GlbScene::skeleton; empty: a static mesh.
     std::vector<std::vector<std::pair<int, double>>> skin;
+    /// Morph targets: absolute positions, each #V x 3 (written as glTF target displacements
+    /// from V, named frame_K in the mesh's extras.targetNames). With GlbScene::animation
+    /// they are its frames: one per key time.
+    std::vector<Eigen::MatrixXd> morph_targets;
+};
+
+/// A keyframed animation (one glTF animation, linear interpolation): the skeleton's joints
+/// move through node-local transforms, and every mesh with morph targets plays them as
+/// frames — at times_s[k] target k has weight 1 and the others 0 (glTF "weights" channel on
+/// the mesh's node), so the mesh passes through its K shapes in order.
+struct GlbAnimation {
+    std::string name = "animation";
+    std::vector<double> times_s;  ///< K >= 1 key times, increasing, seconds
+    /// Per skeleton joint, K node-local transforms (rotation + translation) at the key
+    /// times; empty: the skeleton is not animated.
+    std::vector<std::vector<Eigen::Isometry3d>> joint_local;
 };
 
 struct GlbScene {
@@ -51,13 +67,18 @@ struct GlbScene {
     /// by the skeleton's root joints.
     std::vector<GlbMesh> meshes;
     GlbSkeleton skeleton;
+    /// Optional animation; meshes with morph targets then need one per key time and a node.
+    std::optional<GlbAnimation> animation;
 };
 
 /// Writes `scene` as a glTF binary at `path`, atomically.
 /// \throw drape::InvalidInput naming the mesh (by index and name) and the problem: no
 ///        vertices or faces, wrong column counts, non-finite values, indices out of range,
 ///        N / UV / skin sizes not matching V, skin joints outside the skeleton, a
-///        skeleton whose vectors differ in size or whose parents are not earlier joints.
+///        skeleton whose vectors differ in size or whose parents are not earlier joints,
+///        morph targets not #V x 3 finite, an animation whose times are not increasing,
+///        whose joint transforms are not one per joint and key, or whose morph-animated
+///        meshes lack a node or a target per key.
 /// \throw drape::IoError if the file cannot be written (naming it and assimp's reason).
 void write_glb(const std::filesystem::path& path, const GlbScene& scene);
 
