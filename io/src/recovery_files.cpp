@@ -6,12 +6,10 @@
 #include <drape/io/json_io.hpp>
 #include <drape/io/vision_json.hpp>
 
+#include "staging.hpp"
+
 #include <drape/body/model_io.hpp>
 #include <drape/core/errors.hpp>
-#include <drape/garment/garment_export.hpp>
-#include <drape/garment/pattern_dxf.hpp>
-#include <drape/garment/pattern_json.hpp>
-#include <drape/garment/pattern_svg.hpp>
 #include <drape/recover/outfit_glb.hpp>
 #include <drape/recover/overlay.hpp>
 #include <drape/recover/recovery_report.hpp>
@@ -19,13 +17,10 @@
 #include <drape/vision/strokes.hpp>
 
 #include <sstream>
-#include <unistd.h>
 
 namespace drape::io {
 
 namespace fs = std::filesystem;
-
-namespace {
 
 nlohmann::json drape_json(const recover::DrapeState& d) {
     return {{"usable", d.usable},
@@ -34,6 +29,8 @@ nlohmann::json drape_json(const recover::DrapeState& d) {
             {"seam_gap_max_m", d.seam_gap_max_m},
             {"self_intersections", d.self_intersections}};
 }
+
+namespace {
 
 nlohmann::json summary_json(const recover::RecoverSummary& s) {
     static const char* names[] = {"recovered", "no_garment", "body_fit_failed", "drape_failed", "cancelled"};
@@ -70,35 +67,6 @@ nlohmann::json garment_result_json(const recover::RecoveredGarment& g) {
             {"objective_history", {{"sizing_px2", g.sizing_history}, {"material_relative2", g.material_history}}},
             {"seconds", {{"sizing", g.seconds_sizing}, {"material", g.seconds_material}}}};
 }
-
-// Every output goes to a staging folder beside DIR first; only a complete set is moved in
-// (each file by an atomic rename), so a failed or cancelled run leaves DIR as it was.
-class Staging {
-  public:
-    explicit Staging(const fs::path& out) : out_(out) {
-        make_output_dir(out_);
-        dir_ = out_ / (".partial-" + std::to_string(::getpid()));
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-        if (!fs::create_directories(dir_, ec))
-            throw IoError("cannot create the staging folder '" + dir_.string() + "': " + ec.message());
-    }
-    ~Staging() {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-    fs::path operator/(const std::string& name) const { return dir_ / name; }
-    void commit() {
-        for (const auto& e : fs::directory_iterator(dir_)) {
-            std::error_code ec;
-            fs::rename(e.path(), out_ / e.path().filename(), ec);
-            if (ec) throw IoError("cannot move '" + e.path().string() + "' into '" + out_.string() + "': " + ec.message());
-        }
-    }
-
-  private:
-    fs::path out_, dir_;
-};
 
 }  // namespace
 
@@ -147,13 +115,8 @@ bool write_recovery(const fs::path& out, const std::string& image, const body::B
     Staging staging(out);
     for (size_t i = 0; i < result.garments.size(); ++i) {
         const recover::RecoveredGarment& g = result.garments[i];
-        const std::string n = std::to_string(i);
-        garment::write_garment_glb(staging / ("garment_" + n + ".glb"), g.mesh, g.positions);
-        garment::write_garment_obj(staging / ("garment_" + n + ".obj"), g.pattern, g.mesh, g.positions,
-                                   "drape recover: " + garment::garment_type_name(g.type) + " from " + image);
-        garment::write_pattern_svg(staging / ("pattern_" + n + ".svg"), g.pattern);
-        garment::write_pattern_dxf(staging / ("pattern_" + n + ".dxf"), g.pattern);
-        garment::write_pattern_json(staging / ("pattern_" + n + ".json"), g.pattern);
+        staging.write_garment(i, g.pattern, g.mesh, g.positions,
+                              "drape recover: " + garment::garment_type_name(g.type) + " from " + image);
     }
     body::export_glb(staging / "body.glb", model, result.shaped, result.pose);
     write_png(staging / "mask.png", result.mask);

@@ -312,10 +312,26 @@ GradingSummary grade_sizing(const GarmentSizing& sizing, const GradingBody& from
     s.termination = s.clamped > 0 ? GradingTermination::clamped : GradingTermination::graded;
     try {
         make_pattern(graded);
-    } catch (const InvalidInput& e) {
-        s.termination = GradingTermination::invalid_pattern;
-        s.message = e.what();
+    } catch (const InvalidInput& first) {
+        // The panels' self-intersection test runs on a polyline and can trip on a vertex that
+        // lands exactly on another chord (seen on random_05's skirt graded to the male median:
+        // valid at every value within 0.01 mm of the graded one). A pattern maker grades to
+        // the millimetre: retry once with the values rounded to 0.01 mm.
+        std::vector<double> rounded = sizing_values(graded);
+        for (double& v : rounded) v = std::round(v * 1000.0) / 1000.0;
+        const GarmentSizing retry = with_sizing_values(graded, rounded);
+        try {
+            make_pattern(retry);
+            graded = retry;
+            s.message = "rounded to 0.01 mm (the exact values tripped the pattern check: " + std::string(first.what()) + ")";
+        } catch (const InvalidInput&) {
+            s.termination = GradingTermination::invalid_pattern;
+            s.message = first.what();
+        }
     }
+    // The recorded values are the final ones (after the waist seam's re-tie or the rounding).
+    const std::vector<double> final_values = sizing_values(graded);
+    for (size_t i = 0; i < s.parameters.size(); ++i) s.parameters[i].graded = final_values[i];
     s.style = style_of(sizing, graded, from, to);
     s.ease = ease_of(sizing, graded, from, to);
     for (const StyleParameter& p : s.style) s.max_style_change = std::max(s.max_style_change, p.relative_change);
