@@ -139,6 +139,7 @@ struct EvalTryOnArgs {
     std::string scenes;   // comma-separated names; empty: every folder with truth.json
     double edge_cm = recover::TryOnOptions{}.edge_cm;
     int limit = 0;        // stop after this many try-ons (0: all)
+    bool grade_only = false;
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -193,6 +194,7 @@ void run_eval_tryon(const EvalTryOnArgs& args) {
                                   {"style_within_2_percent", style_ok},       {"worst_penetration_mm", worst_penetration},
                                   {"worst_style_change_percent", worst_style}, {"seconds", seconds}};
         write_json_file(args.out, {{"format", "drape.eval-tryon"}, {"suite", args.suite}, {"edge_cm", args.edge_cm},
+                                   {"grade_only", args.grade_only},
                                    {"summary", summary}, {"runs", runs}});
     };
     // Combinations in the order (body, pose) outer, scene inner: a run cut short still covers
@@ -211,6 +213,7 @@ void run_eval_tryon(const EvalTryOnArgs& args) {
                 in.target.pose = resolve_pose(pose_name);
                 recover::TryOnOptions options;
                 options.edge_cm = args.edge_cm;
+                options.drape = !args.grade_only;
                 options.on_progress = [](const recover::TryOnProgress&) { return !interrupted(); };
                 recover::TryOnResult r;
                 const recover::TryOnSummary s = recover::tryon(model, in, options, r);
@@ -236,7 +239,11 @@ void run_eval_tryon(const EvalTryOnArgs& args) {
                                         {"drape", drape_json(g.drape)}});
                 }
                 all_nocross &= s.drape.self_intersections == 0;  // crossings between garments too
-                const bool ok = s.usable(r);
+                bool ok = s.usable(r);
+                if (args.grade_only) {  // only the grading's criteria
+                    ok = s.termination == recover::TryOnTermination::graded && all_style;
+                    all_converged = all_closed = all_pen = all_nocross = false;
+                }
                 usable += ok;
                 converged += all_converged;
                 closed += all_closed;
@@ -299,6 +306,7 @@ void add_tryon_commands(CLI::App& app) {
     ev->add_option("--scenes", eval->scenes, "only these scene folders (comma-separated names)");
     ev->add_option("--edge", eval->edge_cm, "mesh edge of the drape, cm (default 3)");
     ev->add_option("--limit", eval->limit, "stop after this many try-ons (0 = all)");
+    ev->add_flag("--grade-only", eval->grade_only, "grade only (no drape): the grading figures of every combination in seconds");
     ev->add_option("--out", eval->out, "the result JSON")->required();
     ev->callback([eval] { run_eval_tryon(*eval); });
 }

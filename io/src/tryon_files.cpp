@@ -113,7 +113,7 @@ std::vector<recover::TryOnGarment> read_tryon_garments(const std::vector<std::st
 
 nlohmann::json tryon_json(const recover::TryOnInputs& in, const recover::TryOnOptions& options,
                           const recover::TryOnResult& r, const recover::TryOnSummary& s) {
-    static const char* terminations[] = {"draped", "body_fit_failed", "drape_failed", "cancelled"};
+    static const char* terminations[] = {"draped", "graded", "body_fit_failed", "drape_failed", "cancelled"};
     nlohmann::json garments = nlohmann::json::array();
     for (const auto& g : r.garments)
         garments.push_back({{"garment", g.source.name},

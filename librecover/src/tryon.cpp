@@ -99,6 +99,7 @@ std::string TryOnSummary::brief_report() const {
     os << std::fixed << std::setprecision(1);
     switch (termination) {
         case TryOnTermination::draped: os << "draped"; break;
+        case TryOnTermination::graded: os << "graded only"; break;
         case TryOnTermination::body_fit_failed: os << "body fit failed"; break;
         case TryOnTermination::drape_failed: os << "drape failed"; break;
         case TryOnTermination::cancelled: os << "cancelled"; break;
@@ -226,6 +227,7 @@ TryOnSummary tryon(const body::BodyModel& model, const TryOnInputs& in, const Tr
             out.garments.push_back(std::move(t));
         }
         summary.seconds_grade = since(ts);
+        if (!options.drape) return finish(TryOnTermination::graded, "");
 
         // ---- 3. Dress and drape the outfit.
         report(TryOnStage::draping, 0);

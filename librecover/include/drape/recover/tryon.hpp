@@ -76,6 +76,9 @@ struct TryOnOptions {
     int max_drape_steps = 400;    ///< dynamic steps of the drape, >= 1
     int threads = 2;              ///< body fit and overlay workers, >= 1
     garment::GradingOptions grading;
+    /// False: stop after grading (TryOnTermination::graded; no mesh, drape or render), for
+    /// the grading figures of every body at once.
+    bool drape = true;
     /// Overlay render samples per pixel (photo targets).
     int overlay_samples = 8;
     /// Called between stages and after every simulation step: return false to stop (the
@@ -116,6 +119,7 @@ struct TryOnResult {
 
 enum class TryOnTermination {
     draped,           ///< draped; see each garment's drape state and grading
+    graded,           ///< graded only (TryOnOptions::drape false)
     body_fit_failed,  ///< the photo's body could not be fitted (or segmented)
     drape_failed,     ///< a pattern could not be meshed
     cancelled,
