@@ -2,6 +2,10 @@
 // live here in the app layer, the libraries only see typed options.
 #pragma once
 
+#include <drape/body/pose.hpp>
+
+#include <string>
+
 namespace CLI {
 class App;
 }
@@ -28,6 +32,12 @@ void add_strokes_command(CLI::App& app);
 /// `drape eval-segment DIR [--mode strokes|auto|both] [--scale-check] --out RESULT.json`
 void add_eval_segment_command(CLI::App& app);
 void add_recover_command(CLI::App& app);
+/// `drape tryon --garment RESULT_DIR[:N] ... (--body P.json [--pose POSE] | --photo IMAGE --joints J.json) --out DIR`
+/// and `drape eval-tryon SUITE_DIR --out R.json` (docs/tryon.md)
+void add_tryon_commands(CLI::App& app);
+/// A named pose (a_pose, arms_down, walking, t_pose) or a POSE.json file.
+/// \throw drape::InvalidInput naming the value otherwise.
+body::Pose resolve_pose(const std::string& name);
 void add_eval_recover_commands(CLI::App& app);
 
 /// `drape animate --garment RESULT_DIR[:N] ... [--motion walk|M.bvh] [--wind X,Y,Z] [--seconds S]

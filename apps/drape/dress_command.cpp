@@ -77,6 +77,8 @@ struct DressArgs {
     double motion_s = garment::DrapeOptions{}.body_motion_s;
 };
 
+}  // namespace
+
 body::Pose resolve_pose(const std::string& name) {
     if (name == "a_pose") return body::named_pose(body::NamedPose::a_pose);
     if (name == "arms_down") return body::named_pose(body::NamedPose::arms_down);
@@ -85,6 +87,8 @@ body::Pose resolve_pose(const std::string& name) {
     if (fs::path(name).extension() == ".json") return pose_from_json(read_json_file(name), name);
     throw InvalidInput("--pose '" + name + "' is not a_pose, arms_down, walking, t_pose or a POSE.json file");
 }
+
+namespace {
 
 /// Body and garments from the front-left, on a floor, studio light (render::preview_scene).
 cv::Mat write_render(const fs::path& path, const Eigen::MatrixX3d& body_V, const Eigen::MatrixX3i& body_F,

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     drape::app::add_recover_command(app);
     drape::app::add_eval_recover_commands(app);
     drape::app::add_animate_command(app);
+    drape::app::add_tryon_commands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

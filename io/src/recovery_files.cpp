@@ -6,12 +6,10 @@
 #include <drape/io/json_io.hpp>
 #include <drape/io/vision_json.hpp>
 
+#include "staging.hpp"
+
 #include <drape/body/model_io.hpp>
 #include <drape/core/errors.hpp>
-#include <drape/garment/garment_export.hpp>
-#include <drape/garment/pattern_dxf.hpp>
-#include <drape/garment/pattern_json.hpp>
-#include <drape/garment/pattern_svg.hpp>
 #include <drape/recover/outfit_glb.hpp>
 #include <drape/recover/overlay.hpp>
 #include <drape/recover/recovery_report.hpp>
@@ -26,8 +24,6 @@ namespace drape::io {
 
 namespace fs = std::filesystem;
 
-namespace {
-
 nlohmann::json drape_json(const recover::DrapeState& d) {
     return {{"usable", d.usable},
             {"converged", d.converged},
@@ -35,6 +31,8 @@ nlohmann::json drape_json(const recover::DrapeState& d) {
             {"seam_gap_max_m", d.seam_gap_max_m},
             {"self_intersections", d.self_intersections}};
 }
+
+namespace {
 
 nlohmann::json summary_json(const recover::RecoverSummary& s) {
     static const char* names[] = {"recovered", "no_garment", "body_fit_failed", "drape_failed", "cancelled"};
@@ -126,13 +124,8 @@ bool write_recovery(const fs::path& out, const std::string& image, const body::B
     Staging staging(out);
     for (size_t i = 0; i < result.garments.size(); ++i) {
         const recover::RecoveredGarment& g = result.garments[i];
-        const std::string n = std::to_string(i);
-        garment::write_garment_glb(staging / ("garment_" + n + ".glb"), g.mesh, g.positions);
-        garment::write_garment_obj(staging / ("garment_" + n + ".obj"), g.pattern, g.mesh, g.positions,
-                                   "drape recover: " + garment::garment_type_name(g.type) + " from " + image);
-        garment::write_pattern_svg(staging / ("pattern_" + n + ".svg"), g.pattern);
-        garment::write_pattern_dxf(staging / ("pattern_" + n + ".dxf"), g.pattern);
-        garment::write_pattern_json(staging / ("pattern_" + n + ".json"), g.pattern);
+        staging.write_garment(i, g.pattern, g.mesh, g.positions,
+                              "drape recover: " + garment::garment_type_name(g.type) + " from " + image);
     }
     body::export_glb(staging / "body.glb", model, result.shaped, result.pose);
     write_png(staging / "mask.png", result.mask);

@@ -1,6 +1,10 @@
 #include "staging.hpp"
 
 #include <drape/core/errors.hpp>
+#include <drape/garment/garment_export.hpp>
+#include <drape/garment/pattern_dxf.hpp>
+#include <drape/garment/pattern_json.hpp>
+#include <drape/garment/pattern_svg.hpp>
 #include <drape/io/vision_json.hpp>
 
 #include <unistd.h>
@@ -21,6 +25,16 @@ Staging::Staging(const fs::path& out) : out_(out) {
 Staging::~Staging() {
     std::error_code ec;
     fs::remove_all(dir_, ec);
+}
+
+void Staging::write_garment(std::size_t index, const garment::Pattern& pattern, const garment::GarmentMesh& mesh,
+                            const Eigen::MatrixX3d& positions, const std::string& comment) const {
+    const std::string n = std::to_string(index);
+    garment::write_garment_glb(dir_ / ("garment_" + n + ".glb"), mesh, positions);
+    garment::write_garment_obj(dir_ / ("garment_" + n + ".obj"), pattern, mesh, positions, comment);
+    garment::write_pattern_svg(dir_ / ("pattern_" + n + ".svg"), pattern);
+    garment::write_pattern_dxf(dir_ / ("pattern_" + n + ".dxf"), pattern);
+    garment::write_pattern_json(dir_ / ("pattern_" + n + ".json"), pattern);
 }
 
 void Staging::commit() {

@@ -136,6 +136,84 @@ std::string pattern_to_svg(const Pattern& pattern, const SvgOptions& options) {
     return os.str();
 }
 
+std::string grading_sheet_to_svg(const std::vector<GradedSize>& sizes) {
+    require(!sizes.empty(), "grading_sheet_to_svg: no size given");
+    for (size_t k = 0; k < sizes.size(); ++k) {
+        require(sizes[k].pattern != nullptr, "grading_sheet_to_svg: size ", k, " has no pattern");
+        sizes[k].pattern->validate();
+        const Pattern& p = *sizes[k].pattern;
+        const Pattern& first = *sizes[0].pattern;
+        require(p.panels.size() == first.panels.size(), "grading_sheet_to_svg: size '", sizes[k].label, "' has ",
+                p.panels.size(), " panels, size '", sizes[0].label, "' ", first.panels.size());
+        for (size_t i = 0; i < p.panels.size(); ++i)
+            require(p.panels[i].name == first.panels[i].name, "grading_sheet_to_svg: panel ", i, " is '",
+                    p.panels[i].name, "' in size '", sizes[k].label, "' but '", first.panels[i].name, "' in '",
+                    sizes[0].label, "'");
+    }
+    // The nest of each panel: the union of the sizes' boxes once aligned on the bottom centre.
+    const size_t panels = sizes[0].pattern->panels.size();
+    std::vector<Eigen::Vector2d> anchor(sizes.size() * panels);  // bottom centre of each (size, panel)
+    std::vector<double> half_width(panels, 0), top(panels, 0);
+    for (size_t k = 0; k < sizes.size(); ++k)
+        for (size_t i = 0; i < panels; ++i) {
+            Eigen::Vector2d lo, hi;
+            sizes[k].pattern->panels[i].bounds(&lo, &hi);
+            anchor[k * panels + i] = Eigen::Vector2d(0.5 * (lo.x() + hi.x()), lo.y());
+            half_width[i] = std::max(half_width[i], 0.5 * (hi.x() - lo.x()));
+            top[i] = std::max(top[i], hi.y() - lo.y());
+        }
+    const double gap = SvgOptions{}.gap_cm;
+    std::vector<double> centre_x(panels);
+    double x = gap, height = 0;
+    for (size_t i = 0; i < panels; ++i) {
+        centre_x[i] = x + half_width[i];
+        x += 2 * half_width[i] + gap;
+        height = std::max(height, top[i] + 2 * gap);
+    }
+    const double legend = 2.0 + 1.4 * double(sizes.size());
+    height += legend;
+    const double width = std::max(x, 40.0);
+    static const char* colours[] = {"#1f5fbf", "#c0392b", "#27864a", "#8e44ad", "#d35400"};
+
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(3);
+    os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "cm\" height=\"" << height
+       << "cm\" viewBox=\"0 0 " << width << " " << height << "\">\n"
+       << "<title>grading sheet: " << sizes[0].pattern->name << " (true scale: 1 unit = 1 cm)</title>\n"
+       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+    for (size_t i = 0; i < panels; ++i) {
+        os << "<g id=\"" << sizes[0].pattern->panels[i].name << "\">\n";
+        for (size_t k = 0; k < sizes.size(); ++k) {
+            const Eigen::Vector2d& a = anchor[k * panels + i];
+            const Frame f{Eigen::Vector2d(centre_x[i] - a.x(), gap - a.y()), height - legend};
+            const std::string style = std::string("fill=\"none\" stroke=\"") + colours[k % 5] +
+                                      "\" stroke-width=\"0.08\"" + (k ? " stroke-dasharray=\"0.6,0.3\"" : "");
+            path(os, sizes[k].pattern->panels[i].outline(kChordCm), f, true, style.c_str());
+        }
+        const Frame f0{Eigen::Vector2d(centre_x[i], gap), height - legend};
+        const Eigen::Vector2d label = f0(Eigen::Vector2d(-half_width[i] + 0.5, top[i] + 1.5));
+        os << "<text x=\"" << label.x() << "\" y=\"" << label.y() << "\" font-family=\"sans-serif\" font-size=\"1.6\">"
+           << sizes[0].pattern->panels[i].name << "</text>\n</g>\n";
+    }
+    for (size_t k = 0; k < sizes.size(); ++k) {
+        const double y = height - legend + 1.5 + 1.4 * double(k);
+        os << "<path d=\"M" << gap << "," << y << " h4\" stroke=\"" << colours[k % 5] << "\" stroke-width=\"0.12\""
+           << (k ? " stroke-dasharray=\"0.6,0.3\"" : "") << "/>\n"
+           << "<text x=\"" << gap + 4.6 << "\" y=\"" << y + 0.4 << "\" font-family=\"sans-serif\" font-size=\"1.0\">"
+           << sizes[k].label << "</text>\n";
+    }
+    const double yb = height - 0.8;
+    os << "<path d=\"M" << width - gap - 10 << "," << yb << " h10\" stroke=\"black\" stroke-width=\"0.1\"/>\n"
+       << "<text x=\"" << width - gap - 10 << "\" y=\"" << yb - 0.4
+       << "\" font-family=\"sans-serif\" font-size=\"0.8\">10 cm</text>\n</svg>\n";
+    return os.str();
+}
+
+void write_grading_sheet_svg(const std::filesystem::path& path, const std::vector<GradedSize>& sizes) {
+    write_text_atomically(path, grading_sheet_to_svg(sizes));
+}
+
 void write_pattern_svg(const std::filesystem::path& path, const Pattern& pattern,
                        const SvgOptions& options) {
     write_text_atomically(path, pattern_to_svg(pattern, options));

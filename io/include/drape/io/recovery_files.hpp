@@ -29,6 +29,9 @@ recover::RecoverInputs read_recover_inputs(const std::filesystem::path& image, c
                                            const std::string& strokes, const std::string& palette,
                                            const std::string& garments);
 
+/// A drape's state as result.json and tryon.json write it.
+nlohmann::json drape_json(const recover::DrapeState& drape);
+
 /// result.json's content (the schema of truth.json plus the recovery's own keys).
 nlohmann::json recovery_json(const std::string& image, const recover::RecoverInputs& in,
                              const recover::RecoverOptions& options, const recover::RecoveryResult& result,
