@@ -7,6 +7,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <Eigen/SparseCore>
 
@@ -309,6 +310,9 @@ BodyModel load_model(const std::filesystem::path& path) {
     m.name = f.read_string_attribute("/", "name");
     m.template_vertices = f.read_matrix("/mesh/template_vertices", -1, 3);
     const long V = static_cast<long>(m.template_vertices.rows());
+    if (V > limits::kMaxMeshVertices)
+        f.fail("/mesh/template_vertices", "has " + std::to_string(V) + " vertices, more than the limit of " +
+                                              std::to_string(limits::kMaxMeshVertices) + " (docs/hardening.md)");
     m.faces = f.read_int_matrix("/mesh/faces", -1, 3);
     m.shape_basis = f.read_matrix("/shape/basis", 3 * V, -1);
     const long K = static_cast<long>(m.shape_basis.cols());
