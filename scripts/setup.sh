@@ -21,6 +21,7 @@ packages=(
   libcgal-dev            # pattern triangulation (garments)
   libembree-dev          # ray-traced renders (app layer)
   catch2                 # tests
+  clang libfuzzer-14-dev libclang-rt-14-dev   # fuzz harnesses (scripts/fuzz.sh; docs/hardening.md)
 )
 missing=()
 for p in "${packages[@]}"; do

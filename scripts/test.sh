@@ -16,3 +16,8 @@ if [ "${DRAPE_SKIP_SANITIZERS:-0}" != 1 ]; then
   (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
      ctest --output-on-failure -j"$jobs" --timeout 1800 -R "^(body|capi)")
 fi
+
+if [ "${DRAPE_SKIP_FUZZ:-0}" != 1 ]; then
+  echo "== Fuzz regression: replay fuzz/regressions/, then each harness 20 s (docs/hardening.md)"
+  "$here/scripts/fuzz.sh" --regress 20
+fi
