@@ -197,6 +197,9 @@ Eigen::SparseMatrix<double> read_csr(const h5::File& f, const std::string& group
         const std::int64_t end = indptr[static_cast<std::size_t>(r) + 1];
         if (end < begin)
             f.fail(group + "/indptr", "decreases at row " + std::to_string(r));
+        if (end > nnz)  // found by fuzz/body_model: a middle entry past the data read out of bounds
+            f.fail(group + "/indptr", "entry " + std::to_string(r + 1) + " is " + std::to_string(end) +
+                                          ", past the length of data (" + std::to_string(nnz) + ")");
         for (std::int64_t k = begin; k < end; ++k) {
             const std::int64_t c = indices[static_cast<std::size_t>(k)];
             if (c < 0 || c >= cols)
