@@ -22,6 +22,7 @@ packages=(
   libembree-dev          # ray-traced renders (app layer)
   catch2                 # tests
   assimp-testmodels      # BVH motion captures for the animation tests (skipped when absent)
+  clang libfuzzer-14-dev libclang-rt-14-dev   # fuzz harnesses (scripts/fuzz.sh; docs/hardening.md)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -22,3 +22,8 @@ fi
 if [ "${DRAPE_TSAN:-0}" = 1 ]; then
   "$here/scripts/test_tsan.sh" "$here/build-tsan"
 fi
+
+if [ "${DRAPE_SKIP_FUZZ:-0}" != 1 ]; then
+  echo "== Fuzz regression: replay fuzz/regressions/, then each harness 20 s (docs/hardening.md)"
+  "$here/scripts/fuzz.sh" --regress 20
+fi

@@ -39,6 +39,7 @@ void run_recover(const RecoverArgs& args) {
     recover::RecoverInputs in = read_recover_inputs(args.image, args.joints, args.strokes, args.palette, args.garment);
     in.height_m = args.height_m;
     if (!args.gender.empty()) in.gender = body::parse_gender(args.gender);
+    check_output_folder(args.out);  // an unwritable --out fails now, not after minutes of work
     const recover::RecoverOptions options = recover_options(args.flags, "drape recover");
     const body::BodyModel loaded = args.model.empty() ? body::BodyModel() : body::load_model(args.model);
     const body::BodyModel& model = args.model.empty() ? body::BodyModel::default_model() : loaded;

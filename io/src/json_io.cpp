@@ -2,6 +2,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -11,13 +12,11 @@
 namespace drape::io {
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("cannot read '" + path.string() + "': file missing or unreadable");
-    std::stringstream buffer;
-    buffer << in.rdbuf();
+    const std::string text = limits::read_file_capped(path, limits::kMaxJsonFileBytes, "JSON file");
+    limits::check_json_text(text, "'" + path.string() + "'");
     try {
-        return nlohmann::json::parse(buffer.str());
-    } catch (const nlohmann::json::parse_error& e) {
+        return nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {  // parse_error, out_of_range (1e999)
         throw InvalidInput("'" + path.string() + "' is not valid JSON: " + e.what());
     }
 }

@@ -77,6 +77,10 @@ using detail::Staging;
 
 }  // namespace
 
+void check_output_folder(const fs::path& out) {
+    const Staging probe(out);  // made and removed
+}
+
 recover::RecoverInputs read_recover_inputs(const fs::path& image, const fs::path& joints, const std::string& strokes,
                                            const std::string& palette, const std::string& garments) {
     recover::RecoverInputs in;

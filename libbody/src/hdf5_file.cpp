@@ -1,6 +1,7 @@
 #include "hdf5_file.hpp"
 
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <hdf5.h>
 
@@ -311,6 +312,18 @@ OpenDataset open_dataset(const File& f, hid_t file, const std::string& dataset) 
     std::vector<hsize_t> hd(static_cast<std::size_t>(rank));
     if (rank > 0) H5Sget_simple_extent_dims(space.get(), hd.data(), nullptr);
     o.dims.assign(hd.begin(), hd.end());
+    // A header may declare any extent (unwritten chunks cost no bytes): refuse before the
+    // caller allocates for it (docs/hardening.md, "Resource limits").
+    std::uint64_t count = 1;
+    for (hsize_t d : hd) {
+        if (d != 0 && count > static_cast<std::uint64_t>(limits::kMaxModelDatasetElements) / d)
+            f.fail(dataset, "has shape " + dims_text(o.dims) + ", more than the limit of " +
+                                std::to_string(limits::kMaxModelDatasetElements) + " elements");
+        count *= d;
+    }
+    if (count > static_cast<std::uint64_t>(limits::kMaxModelDatasetElements))
+        f.fail(dataset, "has shape " + dims_text(o.dims) + ", more than the limit of " +
+                            std::to_string(limits::kMaxModelDatasetElements) + " elements");
     return o;
 }
 

@@ -5,6 +5,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 #include <drape/core/vertex_normals.hpp>
 #include <drape/gltf/glb_writer.hpp>
 
@@ -199,11 +200,19 @@ TriangleMesh import_mesh(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw IoError("cannot read mesh '" + path.string() + "': no such file");
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (ec) throw IoError("cannot read mesh '" + path.string() + "': " + ec.message());
+    require(static_cast<std::int64_t>(bytes) <= limits::kMaxMeshFileBytes, "mesh '", path.string(),
+            "' is too large: ", bytes, " bytes (limit ", limits::kMaxMeshFileBytes, ", docs/hardening.md)");
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path.string(), aiProcess_Triangulate |
                                                                 aiProcess_JoinIdenticalVertices);
     if (!scene)
         throw IoError("cannot read mesh '" + path.string() + "': " + importer.GetErrorString());
+    std::int64_t vertex_total = 0;
+    for (unsigned k = 0; k < scene->mNumMeshes; ++k) vertex_total += scene->mMeshes[k]->mNumVertices;
+    require(vertex_total <= limits::kMaxMeshVertices, "mesh '", path.string(), "' has ", vertex_total,
+            " vertices, more than the limit of ", limits::kMaxMeshVertices, " (docs/hardening.md)");
 
     // Merge every mesh instance in world coordinates, welding exactly equal positions.
     std::map<std::array<double, 3>, int> index_of;

@@ -7,6 +7,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <Eigen/SparseCore>
 
@@ -196,6 +197,9 @@ Eigen::SparseMatrix<double> read_csr(const h5::File& f, const std::string& group
         const std::int64_t end = indptr[static_cast<std::size_t>(r) + 1];
         if (end < begin)
             f.fail(group + "/indptr", "decreases at row " + std::to_string(r));
+        if (end > nnz)  // found by fuzz/body_model: a middle entry past the data read out of bounds
+            f.fail(group + "/indptr", "entry " + std::to_string(r + 1) + " is " + std::to_string(end) +
+                                          ", past the length of data (" + std::to_string(nnz) + ")");
         for (std::int64_t k = begin; k < end; ++k) {
             const std::int64_t c = indices[static_cast<std::size_t>(k)];
             if (c < 0 || c >= cols)
@@ -309,6 +313,9 @@ BodyModel load_model(const std::filesystem::path& path) {
     m.name = f.read_string_attribute("/", "name");
     m.template_vertices = f.read_matrix("/mesh/template_vertices", -1, 3);
     const long V = static_cast<long>(m.template_vertices.rows());
+    if (V > limits::kMaxMeshVertices)
+        f.fail("/mesh/template_vertices", "has " + std::to_string(V) + " vertices, more than the limit of " +
+                                              std::to_string(limits::kMaxMeshVertices) + " (docs/hardening.md)");
     m.faces = f.read_int_matrix("/mesh/faces", -1, 3);
     m.shape_basis = f.read_matrix("/shape/basis", 3 * V, -1);
     const long K = static_cast<long>(m.shape_basis.cols());

@@ -4,6 +4,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -169,17 +170,14 @@ bool Material::is_valid(std::string* why) const {
 }
 
 Material load_material(const std::filesystem::path& path, MaterialInfo* info) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(detail::concat("cannot open material file '", path.string(), "'"));
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw IoError(detail::concat("cannot read material file '", path.string(), "'"));
+    const std::string text = limits::read_file_capped(path, limits::kMaxJsonFileBytes, "material file");
     const std::string file = path.string();
+    limits::check_json_text(text, "material file '" + file + "'");
 
     nlohmann::json doc;
     try {
         // ignore_comments: paper.json and aluminium.json start with // lines (jsoncpp style).
-        doc = nlohmann::json::parse(buffer.str(), nullptr, /*allow_exceptions=*/true,
+        doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/true,
                                     /*ignore_comments=*/true);
     } catch (const nlohmann::json::exception& e) {  // parse_error, out_of_range (1e999)
         throw InvalidInput(detail::concat("material file '", file, "' is not valid JSON: ", e.what()));

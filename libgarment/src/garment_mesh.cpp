@@ -2,6 +2,7 @@
 #include <drape/garment/garment_mesh.hpp>
 
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
@@ -211,6 +212,18 @@ MeshSummary mesh_pattern(const Pattern& pattern, const MeshOptions& options, Gar
     std::string why;
     require(options.is_valid(&why), "mesh_pattern: ", why);
     pattern.validate();
+    // Refuse a mesh beyond the vertex limit before triangulating (docs/hardening.md,
+    // "Resource limits"): about one vertex per area of two equilateral triangles of the
+    // target edge inside, one per target edge along each outline.
+    {
+        const double h = options.target_edge_cm;
+        double estimate = 0;
+        for (const Panel& panel : pattern.panels)
+            estimate += std::abs(panel.area()) / (std::sqrt(3.0) / 2.0 * h * h) + panel.perimeter() / h;
+        require(std::isfinite(estimate) && estimate <= double(limits::kMaxMeshVertices), "mesh_pattern: pattern '",
+                pattern.name, "' at target_edge_cm = ", h, " would have about ", estimate,
+                " vertices, more than the limit of ", limits::kMaxMeshVertices, " (docs/hardening.md)");
+    }
 
     // Partner edge of each seam edge.
     std::map<std::pair<int, int>, std::pair<std::pair<int, int>, const Seam*>> partner;

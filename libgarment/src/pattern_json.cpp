@@ -2,6 +2,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -55,6 +56,19 @@ double number(const json& j, const std::string& where) {
     const double v = j.get<double>();
     if (!std::isfinite(v)) bad(where, "not finite");
     return v;
+}
+
+// An index: an integral number that fits an int (get<int>() of 1e300 would be undefined).
+int integer(const json& j, const std::string& where) {
+    const double v = number(j, where);
+    if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
+        bad(where, "expected an integer index, got " + j.dump());
+    return static_cast<int>(v);
+}
+
+std::string text_field(const json& j, const std::string& where) {
+    if (!j.is_string()) bad(where, "expected a string, got " + j.dump());
+    return j.get<std::string>();
 }
 
 Eigen::Vector2d point2(const json& j, const std::string& where) {
@@ -124,6 +138,7 @@ std::string pattern_to_garmentcode_json(const Pattern& pattern) {
 namespace {
 
 Pattern parse_pattern(const std::string& text) {
+    limits::check_json_text(text, "GarmentCode JSON");
     json doc;
     try {
         doc = json::parse(text);
@@ -143,12 +158,12 @@ Pattern parse_pattern(const std::string& text) {
 
     std::vector<std::string> names;
     if (jpattern.contains("panel_order"))
-        for (const json& n : jpattern["panel_order"]) names.push_back(n.get<std::string>());
+        for (const json& n : jpattern["panel_order"]) names.push_back(text_field(n, "pattern.panel_order"));
     for (auto it = jpanels.begin(); it != jpanels.end(); ++it)
         if (std::find(names.begin(), names.end(), it.key()) == names.end()) names.push_back(it.key());
 
     Pattern pattern;
-    pattern.name = props.contains("drape_name") ? props["drape_name"].get<std::string>() : "garmentcode";
+    pattern.name = props.contains("drape_name") ? text_field(props["drape_name"], "properties.drape_name") : "garmentcode";
     std::vector<std::vector<int>> edge_map;   // json edge index -> our edge index
     std::vector<bool> flipped;                // loop reversed to make it CCW
     for (const std::string& name : names) {
@@ -167,7 +182,7 @@ Pattern parse_pattern(const std::string& text) {
             const std::string we = where + ".edges[" + std::to_string(i) + "]";
             const json& ends = field(je[i], "endpoints", we);
             if (!ends.is_array() || ends.size() != 2) bad(we + ".endpoints", "expected [i, j]");
-            const int a = ends[0].get<int>(), b = ends[1].get<int>();
+            const int a = integer(ends[0], we + ".endpoints[0]"), b = integer(ends[1], we + ".endpoints[1]");
             if (a < 0 || b < 0 || a >= int(verts.size()) || b >= int(verts.size()))
                 bad(we + ".endpoints", "vertex index out of range (" + std::to_string(verts.size()) + " vertices)");
             const Eigen::Vector2d s = verts[a], e = verts[b];
@@ -179,7 +194,7 @@ Pattern parse_pattern(const std::string& text) {
                     const Eigen::Vector2d q = from_relative(s, e, point2(c, wc));
                     edge = Edge::cubic(s, s + 2.0 / 3.0 * (q - s), e + 2.0 / 3.0 * (q - e), e);
                 } else {
-                    const std::string type = field(c, "type", wc).get<std::string>();
+                    const std::string type = text_field(field(c, "type", wc), wc + ".type");
                     const json& params = field(c, "params", wc);
                     auto control = [&](const json& j, const std::string& w) {
                         const Eigen::Vector2d v = point2(j, w);
@@ -220,7 +235,8 @@ Pattern parse_pattern(const std::string& text) {
         if (jp.contains("drape_grain")) panel.grain = point2(jp["drape_grain"], where + ".drape_grain");
         if (jp.contains("drape_notches"))
             for (const json& n : jp["drape_notches"]) {
-                Notch nt{n.at(0).get<int>(), n.at(1).get<double>()};
+                if (!n.is_array() || n.size() != 2) bad(where + ".drape_notches", "expected [edge, fraction], got " + n.dump());
+                Notch nt{integer(n[0], where + ".drape_notches"), number(n[1], where + ".drape_notches")};
                 if (nt.edge >= 0 && nt.edge < int(map.size())) {
                     if (flip) nt.fraction = 1 - nt.fraction;
                     nt.edge = map[nt.edge];
@@ -242,8 +258,8 @@ Pattern parse_pattern(const std::string& text) {
         };
         pl.translation_cm = scale * vec3("translation");
         pl.rotation_deg = vec3("rotation");
-        if (jp.contains("drape_body_part")) pl.body_part = body_part_from_name(jp["drape_body_part"].get<std::string>());
-        if (jp.contains("drape_role")) pl.role = panel_role_from_name(jp["drape_role"].get<std::string>());
+        if (jp.contains("drape_body_part")) pl.body_part = body_part_from_name(text_field(jp["drape_body_part"], where + ".drape_body_part"));
+        if (jp.contains("drape_role")) pl.role = panel_role_from_name(text_field(jp["drape_role"], where + ".drape_role"));
         pattern.panels.push_back(std::move(panel));
         pattern.placements.push_back(pl);
         edge_map.push_back(map);
@@ -256,10 +272,10 @@ Pattern parse_pattern(const std::string& text) {
             if (!js[i].is_array() || js[i].size() < 2) bad(ws, "expected [{panel, edge}, {panel, edge}]");
             int pe[2][2];
             for (int k = 0; k < 2; ++k) {
-                const std::string name = field(js[i][k], "panel", ws).get<std::string>();
+                const std::string name = text_field(field(js[i][k], "panel", ws), ws + ".panel");
                 const int p = pattern.panel_index(name);
                 if (p < 0) bad(ws, "unknown panel '" + name + "'");
-                const int e = field(js[i][k], "edge", ws).get<int>();
+                const int e = integer(field(js[i][k], "edge", ws), ws + ".edge");
                 if (e < 0 || e >= int(edge_map[p].size())) bad(ws, "edge " + std::to_string(e) + " out of range for panel '" + name + "'");
                 pe[k][0] = p;
                 pe[k][1] = edge_map[p][e];
@@ -293,12 +309,9 @@ void write_pattern_json(const std::filesystem::path& path, const Pattern& patter
 }
 
 Pattern read_pattern_json(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("cannot read pattern JSON '" + path.string() + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
+    const std::string text = limits::read_file_capped(path, limits::kMaxJsonFileBytes, "pattern JSON");
     try {
-        return pattern_from_garmentcode_json(ss.str());
+        return pattern_from_garmentcode_json(text);
     } catch (const InvalidInput& e) {
         throw InvalidInput(path.string() + ": " + e.what());
     }

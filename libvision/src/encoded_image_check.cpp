@@ -85,7 +85,47 @@ std::string png_defect(const std::uint8_t* b, std::size_t n) {
     }
 }
 
+EncodedImageHeader jpeg_header(const std::uint8_t* b, std::size_t n) {
+    EncodedImageHeader h;
+    h.format = "JPEG";
+    std::size_t pos = 2;  // after SOI
+    while (pos + 4 <= n) {
+        if (b[pos] != 0xFF) return h;
+        while (pos < n && b[pos] == 0xFF) ++pos;
+        if (pos + 3 > n) return h;
+        const std::uint8_t marker = b[pos++];
+        if ((marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) continue;
+        if (marker == 0xDA || marker == 0xD9) return h;  // a scan before any frame header
+        const std::size_t length = (std::size_t(b[pos]) << 8) | b[pos + 1];
+        const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+        if (sof) {
+            // length(2) precision(1) height(2) width(2)
+            if (length < 7 || pos + 7 > n) return h;
+            h.height = (std::int64_t(b[pos + 3]) << 8) | b[pos + 4];
+            h.width = (std::int64_t(b[pos + 5]) << 8) | b[pos + 6];
+            return h;
+        }
+        if (length < 2) return h;
+        pos += length;
+    }
+    return h;
+}
+
 }  // namespace
+
+EncodedImageHeader encoded_image_header(const std::uint8_t* bytes, std::size_t size) {
+    static const std::uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return jpeg_header(bytes, size);
+    EncodedImageHeader h;
+    if (size >= 8 && std::equal(png_signature, png_signature + 8, bytes)) {
+        h.format = "PNG";
+        if (size >= 24 && be32(bytes + 8) == 13 && std::equal(bytes + 12, bytes + 16, "IHDR")) {
+            h.width = be32(bytes + 16);
+            h.height = be32(bytes + 20);
+        }
+    }
+    return h;
+}
 
 std::string encoded_image_defect(const std::uint8_t* bytes, std::size_t size) {
     static const std::uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};

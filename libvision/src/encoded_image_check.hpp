@@ -18,4 +18,15 @@ namespace drape::vision::detail {
 /// PNG: every chunk must lie inside the file and carry a matching CRC-32, up to IEND.
 std::string encoded_image_defect(const std::uint8_t* bytes, std::size_t size);
 
+/// The format and pixel dimensions an encoded image declares in its header, read without
+/// decoding (PNG: the IHDR chunk, which must come first; JPEG: the first start-of-frame
+/// segment before the first scan). `format` is "PNG", "JPEG" or "" (another format, or a
+/// header too short to tell); width and height are -1 when not found.
+struct EncodedImageHeader {
+    std::string format;
+    std::int64_t width = -1;
+    std::int64_t height = -1;
+};
+EncodedImageHeader encoded_image_header(const std::uint8_t* bytes, std::size_t size);
+
 }  // namespace drape::vision::detail

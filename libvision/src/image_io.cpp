@@ -72,6 +72,20 @@ cv::Mat read(const std::filesystem::path& path, int flags, const std::string& wh
     if (in.bad()) throw IoError("cannot read " + what + " '" + path.string() + "': read error");
     const std::string defect = detail::encoded_image_defect(encoded.data(), encoded.size());
     if (!defect.empty()) throw IoError("cannot read " + what + " '" + path.string() + "': " + defect);
+    // The size limits hold before any pixel is decoded: a 100000 x 100000 header in a
+    // 100-byte file must not make the decoder allocate 30 GB. Only formats whose header
+    // we read are decoded (docs/hardening.md, "Resource limits").
+    const detail::EncodedImageHeader header = detail::encoded_image_header(encoded.data(), encoded.size());
+    if (header.format.empty())
+        throw IoError("cannot read " + what + " '" + path.string() + "': not a PNG or JPEG file (Drape reads only those)");
+    if (header.width <= 0 || header.height <= 0)
+        throw IoError("cannot read " + what + " '" + path.string() + "': corrupt " + header.format +
+                      ": no image dimensions in its header");
+    require(header.width <= limits.max_width_px && header.height <= limits.max_height_px &&
+                header.width * header.height <= limits.max_pixels,
+            what, " '", path.string(), "' is too large: ", header.width, " x ", header.height, " px in its ",
+            header.format, " header (limits ", limits.max_width_px, " x ", limits.max_height_px, ", ",
+            limits.max_pixels, " pixels)");
     cv::Mat image;
     try {
         image = cv::imdecode(encoded, flags);

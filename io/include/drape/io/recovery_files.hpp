@@ -48,6 +48,12 @@ bool write_recovery(const std::filesystem::path& out, const std::string& image, 
                     const recover::RecoveryResult& result, const recover::RecoverSummary& summary,
                     const std::function<bool()>& keep_going = {});
 
+/// Creates `out` if needed and checks that files can be created in it (a staging folder is
+/// made and removed), so that a long recovery refuses an unwritable or read-only output
+/// folder before any work rather than after it.
+/// \throw drape::IoError naming the folder and the system's reason.
+void check_output_folder(const std::filesystem::path& out);
+
 /// One garment of a result folder, as try-on and animation need it.
 struct SavedGarment {
     int index = 0;                             ///< N of garment_N.*

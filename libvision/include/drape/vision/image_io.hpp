@@ -3,6 +3,8 @@
 // or an out-of-memory kill.
 #pragma once
 
+#include <drape/core/limits.hpp>
+
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -13,10 +15,10 @@ namespace drape::vision {
 
 /// Limits on the images libvision reads. Defaults allow any ordinary photo.
 struct ImageLimits {
-    int max_width_px = 12000;                 ///< > 0
-    int max_height_px = 12000;                ///< > 0
-    std::int64_t max_pixels = 50'000'000;     ///< > 0, width x height
-    std::int64_t max_file_bytes = 200'000'000;///< > 0, checked before decoding
+    int max_width_px = limits::kMaxImageSidePx;                ///< > 0
+    int max_height_px = limits::kMaxImageSidePx;               ///< > 0
+    std::int64_t max_pixels = limits::kMaxImagePixels;         ///< > 0, width x height
+    std::int64_t max_file_bytes = limits::kMaxImageFileBytes;  ///< > 0, checked before reading
     int min_side_px = 16;                     ///< >= 1; smaller images are rejected
 
     bool is_valid(std::string* why = nullptr) const;
@@ -25,10 +27,11 @@ struct ImageLimits {
 /// Reads a photo as 8-bit 3-channel BGR, rotated upright by its EXIF orientation.
 /// A JPEG or PNG must be complete and intact: a file cut short (no end-of-image marker, a
 /// chunk past the end) or with a damaged PNG chunk (CRC) is refused, since the decoders
-/// would fill the missing part with gray without an error. Other formats go to OpenCV as
-/// they are. The same holds for the readers below.
+/// would fill the missing part with gray without an error. Only PNG and JPEG are read:
+/// their header's dimensions are checked against `limits` before any pixel is decoded (a
+/// forged header cannot make the decoder allocate). The same holds for the readers below.
 /// \throw drape::IoError naming the file when it is missing, unreadable, truncated or
-///        damaged (naming the defect) or not an image; drape::InvalidInput when it breaks
+///        damaged (naming the defect) or not a PNG or JPEG; drape::InvalidInput when it breaks
 ///        `limits` (naming the size and the limit).
 cv::Mat load_image(const std::filesystem::path& path, const ImageLimits& limits = {});
 
