@@ -315,7 +315,7 @@ TEST_CASE("dressing eval: every template on the mean bodies in three poses (tabl
     }
 }
 
-TEST_CASE("dressing: every template starts clean on the mean female in A-pose; skirt, pants, tank top on the male",
+TEST_CASE("dressing: every template starts clean on the mean female in A-pose, skirt, pants, tank top on the male",
           "[garment][dressing]") {
     // The cases of the 36-case table (docs/notes/dressing.md) that are clean: no self-intersection
     // (seam partners as one vertex) and nothing deeper than 1 mm inside the body.
@@ -506,7 +506,7 @@ TEST_CASE("drape: the 5th-percentile man's t-shirt in A-pose sews its sleeve cap
     CHECK(c.max_seam_gap_m < 0.001);
 }
 
-TEST_CASE("dressing: placement passes are validated; a clean skirt keeps the single pass",
+TEST_CASE("dressing: placement passes are validated, a clean skirt keeps the single pass",
           "[garment][dressing]") {
     DressingOptions d;
     std::string why;

@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <cmath>
 
 using namespace drape::garment;
@@ -20,6 +22,8 @@ TEST_CASE("particle swarm: a shifted quadratic bowl's minimum, in parallel", "[g
         int w = worker_max.load();
         while (worker > w && !worker_max.compare_exchange_weak(w, worker)) {
         }
+        // Slow enough that the second worker takes particles of every batch (a drape takes ~1 s).
+        std::this_thread::sleep_for(std::chrono::microseconds(300));
         double s = 0;
         for (size_t i = 0; i < x.size(); ++i) s += (x[i] - centre[i]) * (x[i] - centre[i]);
         return s;
@@ -40,7 +44,7 @@ TEST_CASE("particle swarm: a shifted quadratic bowl's minimum, in parallel", "[g
     for (size_t i = 1; i < s.history.size(); ++i) CHECK(s.history[i] <= s.history[i - 1]);
 }
 
-TEST_CASE("particle swarm: a minimum outside the box ends on its wall; refused points never win",
+TEST_CASE("particle swarm: a minimum outside the box ends on its wall, refused points never win",
           "[garment][swarm]") {
     SwarmOptions o;
     o.particles = 16;

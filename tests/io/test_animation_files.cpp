@@ -81,7 +81,7 @@ TEST_CASE("animate: a skirt walks 0.4 s without explosion, penetration or crossi
     CHECK(moved.z() == Approx(pelvis).margin(0.1));
 }
 
-TEST_CASE("animate: the files; the glb passes the validator and re-imports with its vertices and frames",
+TEST_CASE("animate: the files, the glb passes the validator and re-imports with its vertices and frames",
           "[io][animate][glb]") {
     const Animated& a = animated();
     REQUIRE(a.summary.frames == 7);
@@ -142,7 +142,7 @@ TEST_CASE("animate: the files; the glb passes the validator and re-imports with 
     CHECK_THAT(r.out, Catch::Contains("\"numErrors\": 0"));
 }
 
-TEST_CASE("animate: cancel stops after the frame; a cancelled write leaves the folder as it was; bad input",
+TEST_CASE("animate: cancel stops after the frame, a cancelled write leaves the folder as it was, bad input",
           "[io][animate]") {
     const Animated& a = animated();
     garment::AnimateOptions o = a.options;
