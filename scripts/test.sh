@@ -24,6 +24,6 @@ if [ "${DRAPE_TSAN:-0}" = 1 ]; then
 fi
 
 if [ "${DRAPE_SKIP_FUZZ:-0}" != 1 ]; then
-  echo "== Fuzz regression: replay fuzz/regressions/, then each harness 20 s (docs/hardening.md)"
-  "$here/scripts/fuzz.sh" --regress 20
+  echo "== Fuzz regression: replay fuzz/regressions/, then each harness 8 s (docs/hardening.md)"
+  "$here/scripts/fuzz.sh" --regress 8
 fi
