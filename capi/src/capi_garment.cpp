@@ -2,6 +2,7 @@
 #include "capi_internal.hpp"
 
 #include <drape/io/garment_json.hpp>
+#include <drape/io/json_io.hpp>
 #include <drape/io/material_arg.hpp>
 
 #include <drape/body/measurements.hpp>
@@ -70,13 +71,7 @@ namespace db = drape::body;
 
 // G from JSON text. \throw drape::InvalidInput naming `what` for bad JSON or a bad key.
 dg::GarmentSizing parse_sizing(dg::GarmentType type, const char* json, const std::string& what) {
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(json);
-    } catch (const nlohmann::json::exception& e) {
-        throw drape::InvalidInput(what + ": not valid JSON: " + e.what());
-    }
-    return drape::io::sizing_from_json(type, j, what);
+    return drape::io::sizing_from_json(type, drape::io::parse_json_text(json, what), what);
 }
 
 // G as JSON text, or the template defaults for NULL.

@@ -13,11 +13,15 @@ namespace drape::io {
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
     const std::string text = limits::read_file_capped(path, limits::kMaxJsonFileBytes, "JSON file");
-    limits::check_json_text(text, "'" + path.string() + "'");
+    return parse_json_text(text, "'" + path.string() + "'");
+}
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& what) {
+    limits::check_json_text(text, what);
     try {
         return nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {  // parse_error, out_of_range (1e999)
-        throw InvalidInput("'" + path.string() + "' is not valid JSON: " + e.what());
+        throw InvalidInput(what + " is not valid JSON: " + e.what());
     }
 }
 

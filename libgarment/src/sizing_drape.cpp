@@ -144,7 +144,6 @@ SizingDrape::SizingDrape(const SizingDrape& other) : shared_(other.shared_) {
     cloth::Simulator sim(o.sim.mesh(), o.sim.materials(), o.sim.face_material(), o.sim.options());
     sim.set_obstacle(*o.sim.obstacle());
     if (!shared_->welded) sim.set_stitches(o.sim.stitches());
-    sim.move_obstacle(shared_->body->positions());
     state_ = std::make_unique<State>(State{std::move(sim), o.sizing, o.material, o.last_settled, o.body});
 }
 

@@ -28,10 +28,8 @@ double rendered_wrinkle_density(const OutfitMeshes& scene, const OutfitView& vie
                    render::lighting_preset(render::LightingPreset::midday), ro, images);
     // The candidate is the last mesh of the scene: mesh index 1 + its garment index.
     const int candidate = static_cast<int>(scene.garments.size());
-    cv::Mat mask(images.mesh_index.size(), CV_8UC1, cv::Scalar(0));
-    for (int y = 0; y < mask.rows; ++y)
-        for (int x = 0; x < mask.cols; ++x)
-            if (images.mesh_index.at<std::int16_t>(y, x) == candidate) mask.at<std::uint8_t>(y, x) = 255;
+    cv::Mat mask;
+    cv::compare(images.mesh_index, candidate, mask, cv::CMP_EQ);
     if (cv::countNonZero(mask) == 0) return 0.0;
     try {
         const vision::WrinkleSummary w =

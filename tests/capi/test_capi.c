@@ -6,16 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int failures = 0;
-
-#define CHECK(cond)                                                                  \
-    do {                                                                             \
-        if (!(cond)) {                                                               \
-            fprintf(stderr, "%s:%d: CHECK failed: %s (last error: %s)\n", __FILE__, \
-                    __LINE__, #cond, drape_last_error_message());                    \
-            ++failures;                                                              \
-        }                                                                            \
-    } while (0)
+#include "c_check.h"
 
 int main(int argc, char** argv) {
     drape_body body = NULL;

@@ -31,15 +31,7 @@ _Static_assert(offsetof(drape_dress_options, edge_cm) == 8, "drape_dress_options
 _Static_assert(offsetof(drape_progress, operation) == sizeof(void*), "drape_progress layout changed");
 _Static_assert(sizeof(drape_status) == sizeof(int), "drape_status is an int-sized enum");
 
-static int failures = 0;
-#define CHECK(cond)                                                                                         \
-    do {                                                                                                    \
-        if (!(cond)) {                                                                                      \
-            fprintf(stderr, "%s:%d: CHECK failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond,       \
-                    drape_last_error_message());                                                            \
-            ++failures;                                                                                     \
-        }                                                                                                   \
-    } while (0)
+#include "c_check.h"
 
 /* What a caller of an older drape.h would have had: the options ending earlier. The guard
  * bytes follow the struct in the caller's memory and must stay untouched. */

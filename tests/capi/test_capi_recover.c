@@ -14,15 +14,7 @@
 #include <string.h>
 #include <time.h>
 
-static int failures = 0;
-#define CHECK(cond)                                                                                         \
-    do {                                                                                                    \
-        if (!(cond)) {                                                                                      \
-            fprintf(stderr, "%s:%d: CHECK failed: %s (last error: %s)\n", __FILE__, __LINE__, #cond,       \
-                    drape_last_error_message());                                                            \
-            ++failures;                                                                                     \
-        }                                                                                                   \
-    } while (0)
+#include "c_check.h"
 
 static double now_s(void) {
     struct timespec t;

@@ -13,6 +13,11 @@ namespace drape::io {
 /// with the file name and the parser's position).
 nlohmann::json read_json_file(const std::filesystem::path& path);
 
+/// Parses JSON text handed over in memory (e.g. by the C API), with the same limits as a file
+/// (core/limits.hpp: size, nesting depth). `what` names the text in messages.
+/// \throw drape::InvalidInput naming `what`: too large, too deep, or not valid JSON.
+nlohmann::json parse_json_text(const std::string& text, const std::string& what);
+
 /// Writes JSON (pretty, 2 spaces) atomically.
 void write_json_file(const std::filesystem::path& path, const nlohmann::json& j);
 
