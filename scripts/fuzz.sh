@@ -40,6 +40,7 @@ cmake --build "$build" -j"${DRAPE_FUZZ_JOBS:-$(nproc)}" --target "${targets[@]}"
 # leak detection on; a UBSan report aborts (the harness flags make it fatal); the memory
 # and time caps turn an unbounded allocation or a hang into a finding.
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$here/scripts/lsan.supp}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 flags=(-rss_limit_mb=2560 -malloc_limit_mb=1024 -timeout=30 -print_final_stats=1 -close_fd_mask=1)
 

@@ -15,6 +15,7 @@ if [ "${DRAPE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake --build "$here/build-asan" -j"$jobs" --target drape_body_tests drape_capi_tests drape_capi_c_test \
     drape_capi_thread_test drape_capi_abi_test drape_capi_shared
   (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+     LSAN_OPTIONS="suppressions=$here/scripts/lsan.supp" \
      ctest --output-on-failure -j"$jobs" --timeout 1800 -R "^(body|capi)")
 fi
 # ThreadSanitizer (the C API's two-thread test): opt-in until its instrumented build of every

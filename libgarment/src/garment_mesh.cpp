@@ -90,8 +90,16 @@ PanelMesh mesh_panel(std::vector<EdgeSamples>& samples, const MeshOptions& optio
     const Criteria criteria(b, kLongestEdgeFactor * options.target_edge_cm);
     if (options.refine_boundary)
         CGAL::refine_Delaunay_mesh_2(cdt, criteria);
-    else
-        CGAL::refine_Delaunay_mesh_2_without_edge_refinement(cdt, criteria);
+    else {
+        // As CGAL::refine_Delaunay_mesh_2_without_edge_refinement, but with clear_seeds()
+        // first: that mesher's constructor leaves its seeds_mark flag uninitialised (CGAL 5.5;
+        // Delaunay_mesher_2's sets it), and init() reads it, which UBSan reports as an
+        // invalid bool load. Without seeds the flag does not change the result.
+        CGAL::Delaunay_mesher_no_edge_refinement_2<CDT, Criteria> mesher(cdt, criteria);
+        mesher.clear_seeds();
+        mesher.init();
+        mesher.refine_mesh();
+    }
 
     std::map<CDT::Vertex_handle, Tag> tags;
     for (const auto& [v, tag] : loop) tags[v] = tag;
