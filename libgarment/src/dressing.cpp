@@ -724,8 +724,10 @@ DressingSummary dress_with_passes(const Pattern& pattern, const GarmentMesh& mes
 // line, can pass each other once one has moved. Without sleeves one pass is the default:
 // with 4 passes the synthetic suite's Table 2 skirts (a heavy woman, A-pose) started clean
 // but ended with two vertices 70 mm inside a thigh. Where one pass leaves crossings after
-// untangling (Table 1's pants: 8), the 4-pass placement is tried too and the state with
-// fewer crossings kept (ties keep one pass).
+// untangling (Table 1's pants: 8), or a seam gap over kMaxSewnDressingSeamGapM (ANSUR record
+// 28192's pants: 19 mm at the crotch point), the 4-pass placement is tried too and the state
+// with fewer crossings kept; with as many, the 4-pass state only if it brings the gap within
+// kMaxSewnDressingSeamGapM (other ties keep one pass).
 DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
                               const body::BodyModel& model, const body::ShapedBody& shaped,
                               const body::Pose& pose, const DressingOptions& options,
@@ -736,10 +738,12 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
     constexpr int kSleevePasses = 4;
     if (detail::has_sleeves(pattern)) return dress_with_passes(pattern, mesh, model, shaped, pose, options, kSleevePasses, positions);
     DressingSummary one = dress_with_passes(pattern, mesh, model, shaped, pose, options, 1, positions);
-    if (one.self_intersections == 0) return one;
+    if (one.self_intersections == 0 && one.max_seam_gap_m <= kMaxSewnDressingSeamGapM) return one;
     Eigen::MatrixX3d more_positions;
     DressingSummary more = dress_with_passes(pattern, mesh, model, shaped, pose, options, kSleevePasses, more_positions);
-    if (more.usable() && more.self_intersections < one.self_intersections) {
+    if (more.usable() && (more.self_intersections < one.self_intersections ||
+                          (more.self_intersections == one.self_intersections && one.max_seam_gap_m > kMaxSewnDressingSeamGapM &&
+                           more.max_seam_gap_m <= kMaxSewnDressingSeamGapM))) {
         positions = std::move(more_positions);
         one = std::move(more);
     }

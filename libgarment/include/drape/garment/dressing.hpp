@@ -114,6 +114,13 @@ DressingSummary dress_garment(const Pattern& pattern, const GarmentMesh& mesh,
                               const body::Pose& pose, const DressingOptions& options,
                               Eigen::MatrixX3d& positions);
 
+/// A garment without sleeves is wrapped with its seams side by side, a few millimetres
+/// apart; a dressed seam gap above this (a pants' crotch point left on the far side of the
+/// other leg's panel by the push-out and untangling, 19 mm on ANSUR record 28192, whose
+/// seams then took 400+ steps to close and crossed) makes dress_garment try the 4-pass
+/// placement too and keep it if it has fewer crossings, or as many and a gap within this.
+constexpr double kMaxSewnDressingSeamGapM = 0.005;
+
 /// dress_for_drape raises the arms in steps of this much, at most kMaxDressingArmRaiseDeg,
 /// until the dressed seam gap of a garment with sleeves is at most kMaxDressingSeamGapM.
 constexpr double kDressingArmRaiseStepDeg = 5.0;
