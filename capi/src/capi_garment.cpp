@@ -103,6 +103,23 @@ constexpr double kPantsEdgeCm = 2.5;
 
 }  // namespace
 
+namespace drape::capi {
+
+drape_garment_mesh_s* new_garment_mesh(const drape::garment::Pattern& pattern,
+                                       const drape::garment::GarmentSizing& sizing,
+                                       const drape::garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions) {
+    auto p = std::make_shared<drape_pattern_s>();
+    p->pattern = pattern;
+    p->sizing = sizing;
+    auto m = std::make_unique<drape_garment_mesh_s>();
+    m->pattern = std::move(p);
+    m->mesh = std::make_shared<const drape::garment::GarmentMesh>(mesh);
+    m->positions = positions;
+    return m.release();
+}
+
+}  // namespace drape::capi
+
 extern "C" {
 
 drape_status drape_pattern_create(const char* garment, const char* sizing_json, drape_pattern* out_pattern) {

@@ -220,6 +220,16 @@ private:
     std::atomic<bool> stopped_{false};  // the callback returned 0 (read by other threads too)
 };
 
+/// A new garment mesh handle owning copies of a result's pattern, sizing, mesh and vertices
+/// (recoveries and try-ons hand their garments out this way).
+drape_garment_mesh_s* new_garment_mesh(const drape::garment::Pattern& pattern,
+                                       const drape::garment::GarmentSizing& sizing,
+                                       const drape::garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions);
+
+/// A new body handle of `model` with this shape at rest and in `pose`.
+drape_body_s* new_body(std::shared_ptr<const drape::body::BodyModel> model, const drape::body::SemanticShape& shape,
+                       const drape::body::ShapedBody& shaped, const drape::body::Pose& pose);
+
 /// DRAPE_ERROR_CANCELLED with a message naming the call.
 drape_status cancelled(const char* function);
 

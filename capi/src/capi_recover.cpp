@@ -203,14 +203,7 @@ drape_status drape_recovery_get_garment_mesh(drape_recovery recovery, size_t ind
     DRAPE_REQUIRE_GARMENT(recovery, index);
     return guarded(__func__, [&] {
         const dr::RecoveredGarment& g = recovery->result.garments[index];
-        auto pattern = std::make_shared<drape_pattern_s>();
-        pattern->pattern = g.pattern;
-        pattern->sizing = g.sizing;
-        auto m = std::make_unique<drape_garment_mesh_s>();
-        m->pattern = std::move(pattern);
-        m->mesh = std::make_shared<const drape::garment::GarmentMesh>(g.mesh);
-        m->positions = g.positions;
-        *out_mesh = m.release();
+        *out_mesh = new_garment_mesh(g.pattern, g.sizing, g.mesh, g.positions);
         return DRAPE_OK;
     });
 }
@@ -220,13 +213,7 @@ drape_status drape_recovery_get_body(drape_recovery recovery, drape_body* out_bo
     DRAPE_REQUIRE_ARG(out_body, "out_body must not be NULL");
     *out_body = nullptr;
     return guarded(__func__, [&] {
-        auto b = std::make_unique<drape_body_s>();
-        b->model = recovery->model;
-        b->shape = recovery->result.fit.shape;
-        b->shaped = recovery->result.shaped;
-        b->pose = recovery->result.pose;
-        b->posed = drape::body::pose_body(*b->model, b->shaped, b->pose);
-        *out_body = b.release();
+        *out_body = new_body(recovery->model, recovery->result.fit.shape, recovery->result.shaped, recovery->result.pose);
         return DRAPE_OK;
     });
 }

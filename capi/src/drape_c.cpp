@@ -160,6 +160,17 @@ drape_status cancelled(const char* function) {
     return fail(DRAPE_ERROR_CANCELLED, [&] { return std::string(function) + ": cancelled"; });
 }
 
+drape_body_s* new_body(std::shared_ptr<const drape::body::BodyModel> model, const drape::body::SemanticShape& shape,
+                       const drape::body::ShapedBody& shaped, const drape::body::Pose& pose) {
+    auto b = std::make_unique<drape_body_s>();
+    b->model = std::move(model);
+    b->shape = shape;
+    b->shaped = shaped;
+    b->pose = pose;
+    b->posed = drape::body::pose_body(*b->model, b->shaped, b->pose);
+    return b.release();
+}
+
 }  // namespace drape::capi
 
 namespace {

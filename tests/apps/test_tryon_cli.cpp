@@ -3,9 +3,6 @@
 // The acceptance over the synthetic suite is `drape eval-tryon` (docs/tryon.md).
 #include <catch2/catch.hpp>
 
-#include <drape/cloth/material.hpp>
-#include <drape/garment/garment_sizing.hpp>
-#include <drape/io/garment_json.hpp>
 #include <drape/io/json_io.hpp>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/skirt_scene.hpp"
 #include "cli_runner.hpp"
 #include "test_paths.hpp"
 
@@ -24,31 +22,11 @@ namespace {
 // A path quoted for the shell.
 std::string q(const fs::path& p) { return '"' + p.string() + '"'; }
 
-// A result folder as `drape recover` or `drape synth` leaves it (truth.json's schema): a
-// median woman and a knee-length skirt of gray interlock.
-fs::path write_scene(const fs::path& dir, bool with_garment = true) {
-    fs::create_directories(dir);
-    drape::garment::GarmentSizing g;
-    g.type = drape::garment::GarmentType::skirt;
-    g.skirt = {40.0, 40.0 / (3.14159265358979 / 2), 50.0, 90.0};
-    nlohmann::json garments = nlohmann::json::array();
-    if (with_garment)
-        garments.push_back({{"type", "skirt"},
-                            {"sizing", drape::io::to_json(g)},
-                            {"material", drape::io::material_to_json(drape::cloth::builtin_material("gray-interlock"),
-                                                                     "gray-interlock")}});
-    const nlohmann::json truth = {
-        {"body", {{"params", {{"gender", "female"}, {"height_m", 1.626}, {"weight_kg", 66.8}}}}},
-        {"garments", garments}};
-    std::ofstream(dir / "truth.json") << truth.dump();
-    return dir;
-}
-
 }  // namespace
 
 TEST_CASE("drape tryon grades a skirt to a large man and drapes it usable", "[apps][tryon]") {
     const fs::path dir = drape::test::scratch_dir("tryon_real");
-    const fs::path scene = write_scene(dir / "scene");
+    const fs::path scene = drape::test::write_skirt_scene(dir / "scene");
     std::ofstream(dir / "man.json") << R"({"gender": "male", "height_m": 1.87, "weight_kg": 110.6})";
     const auto r = run_drape("tryon --garment " + q(scene) + ":0 --body " + q(dir / "man.json") +
                              " --edge 8 --out " + q(dir / "out"));
@@ -81,8 +59,8 @@ TEST_CASE("drape tryon grades a skirt to a large man and drapes it usable", "[ap
 
 TEST_CASE("drape tryon refuses bad input with a clear error", "[apps][tryon]") {
     const fs::path dir = drape::test::scratch_dir("tryon_bad");
-    const fs::path scene = write_scene(dir / "scene");
-    const fs::path empty = write_scene(dir / "empty", false);
+    const fs::path scene = drape::test::write_skirt_scene(dir / "scene");
+    const fs::path empty = drape::test::write_skirt_scene(dir / "empty", false);
     std::ofstream(dir / "man.json") << R"({"gender": "male", "height_m": 1.87, "weight_kg": 110.6})";
     const std::string body = " --body " + q(dir / "man.json") + " --out " + q(dir / "out");
 

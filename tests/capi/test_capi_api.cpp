@@ -15,21 +15,14 @@
 #include <thread>
 #include <vector>
 
+#include "capi_test_util.hpp"
 #include "test_paths.hpp"
 
 namespace fs = std::filesystem;
+using drape::test::last_error;
+using drape::test::take_json;
 
 namespace {
-
-std::string last_error() { return drape_last_error_message(); }
-
-// A JSON string from the library, parsed and freed.
-nlohmann::json take_json(char* text) {
-    REQUIRE(text != nullptr);
-    const nlohmann::json j = nlohmann::json::parse(text);
-    drape_free(text);
-    return j;
-}
 
 std::string head(const fs::path& p, size_t n) {
     std::ifstream f(p, std::ios::binary);

@@ -534,6 +534,72 @@ DRAPE_API drape_status drape_recovery_export(drape_recovery recovery, const char
 DRAPE_API drape_status drape_recovery_write_folder(drape_recovery recovery, const char* folder,
                                                    const drape_monitor* monitor);
 
+/* ---- virtual try-on ------------------------------------------------------------------ */
+
+typedef struct drape_tryon_inputs {
+    uint32_t struct_size;
+    const char* const* garments; /* garment_count specs, inner garment first: "DIR" (every garment
+                                    of a result folder, as drape_recovery_write_folder or `drape
+                                    recover` writes it, or of a `drape synth` scene) or "DIR:N"
+                                    (garment N); required */
+    size_t garment_count;        /* >= 1 */
+    drape_body body;             /* a body target: its shape and pose (not consumed); NULL for a
+                                    photo target. Exactly one of body and image_path is set. */
+    const char* image_path;      /* a photo target: the photo (JPEG/PNG) */
+    const char* joints_path;     /*   its 14 joints (JSON), required with image_path */
+    const char* strokes_path;    /*   user strokes PNG, NULL = automatic segmentation */
+    const char* palette_path;    /*   colour -> class JSON for colour-coded strokes, or NULL */
+    double height_m;             /*   the person's known stature, NaN = unknown */
+    int32_t gender;              /*   a drape_gender value */
+} drape_tryon_inputs;
+DRAPE_API drape_status drape_tryon_inputs_init(drape_tryon_inputs* inputs);
+
+typedef struct drape_tryon_options {
+    uint32_t struct_size;
+    double edge_cm;              /* mesh edge of the drape, (0.5, 20] cm (3) */
+    int32_t max_drape_steps;     /* dynamic steps of the drape, >= 1 (400) */
+    int32_t threads;             /* body fit and overlay workers, >= 1 (2) */
+} drape_tryon_options;
+DRAPE_API drape_status drape_tryon_options_init(drape_tryon_options* options);
+
+typedef struct drape_tryon_s* drape_tryon_result;
+
+/** Puts recovered garments on another body or into another photo, as `drape tryon`
+ *  (docs/tryon.md): each garment keeps its fabric, its sizing G is graded to the new body
+ *  (ease over each girth kept, lengths by the body's proportions, style parameters fixed),
+ *  and the outfit is dressed and draped; a photo target's body is fitted from the photo first
+ *  and the garments are rendered over it. model NULL = the body target's model, else the
+ *  built-in model. options and monitor may be NULL; the monitor is called between stages and
+ *  after every simulation step (operation "tryon", stages "fitting_body", "grading",
+ *  "draping", "rendering").
+ *  \return DRAPE_OK (every drape and grading usable); DRAPE_ERROR_NO_CONVERGENCE with a
+ *          result when one is not (see its JSON), without one when the photo's body could not
+ *          be fitted or a pattern meshed; DRAPE_ERROR_INVALID_ARGUMENT (a folder without a
+ *          garment, N out of range, both or neither target, bad joints; the message names the
+ *          file and field); DRAPE_ERROR_IO; DRAPE_ERROR_CANCELLED (no result). */
+DRAPE_API drape_status drape_tryon(drape_body_model model, const drape_tryon_inputs* inputs,
+                                   const drape_tryon_options* options, const drape_monitor* monitor,
+                                   drape_tryon_result* out_result);
+/** Releases the handle and what it owns; NULL is a no-op. */
+DRAPE_API void drape_tryon_destroy(drape_tryon_result result);
+/** tryon.json of `drape tryon`: the target, per garment its source, original and graded G,
+ *  the grading (rules, clamps, style changes, ease, the size grade against the chart), the
+ *  drape's checks, and the summary. Free with drape_free(). */
+DRAPE_API drape_status drape_tryon_json(drape_tryon_result result, char** out_json);
+DRAPE_API drape_status drape_tryon_get_garment_count(drape_tryon_result result, size_t* count);
+/** Garment `index` (inner first) as a new mesh handle: its graded pattern and the draped
+ *  vertices (world, metres), independent of the result. */
+DRAPE_API drape_status drape_tryon_get_garment_mesh(drape_tryon_result result, size_t index,
+                                                    drape_garment_mesh* out_mesh);
+/** The target body (its shape, the pose draped in) as a new body handle. */
+DRAPE_API drape_status drape_tryon_get_body(drape_tryon_result result, drape_body* out_body);
+/** Writes the folder of `drape tryon` (tryon.json, garment_N.glb/.obj, pattern_N.svg/.dxf/
+ *  .json, grading_N.svg, body.glb, outfit.glb, report.html; for a photo target overlay.png,
+ *  mask.png, own_garment_mask.png): staged, then moved in whole, so a failure or a cancel
+ *  (checked before the move; operation "write_tryon") leaves `folder` as it was. */
+DRAPE_API drape_status drape_tryon_write_folder(drape_tryon_result result, const char* folder,
+                                                const drape_monitor* monitor);
+
 #ifdef __cplusplus
 }
 #endif
