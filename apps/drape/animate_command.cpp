@@ -6,6 +6,7 @@
 #include <drape/io/animation_files.hpp>
 #include <drape/io/json_io.hpp>
 #include <drape/io/recovery_files.hpp>
+#include <drape/recover/animate_garments.hpp>
 
 #include <drape/body/model_io.hpp>
 #include <drape/body/motion.hpp>
@@ -58,22 +59,7 @@ body::ShapedBody shape(const body::BodyModel& model, const body::SemanticRequest
     return shaped;
 }
 
-/// The motion of --motion: "walk" (the built-in cycle) or a BVH file.
-body::Motion read_motion(const std::string& name, const body::ShapedBody& shaped, double seconds, double fps) {
-    if (name == "walk") return body::walk_cycle(shaped.joints, seconds, fps);
-    if (fs::path(name).extension() != ".bvh")
-        throw InvalidInput("--motion '" + name + "' is neither 'walk' nor a .bvh file");
-    body::BvhRetargetSummary s;
-    body::Motion m = body::load_bvh_motion(name, shaped.joints, body::BvhJointMap::standard(), &s);
-    std::cerr << "drape animate: " << name << ": " << s.file_frames << " frames at " << s.file_fps << " fps, "
-              << s.mapped_joints << " of 22 joints mapped, root scale " << s.root_scale << "\n";
-    if (m.duration_s() < seconds)
-        std::cerr << "drape animate: the motion lasts " << m.duration_s() << " s, shorter than --seconds " << seconds
-                  << ": its last pose is held\n";
-    return m;
-}
 
-/// A one-line progress bar on stderr; false once Ctrl-C arrived.
 bool progress_bar(const char* who, const garment::AnimateProgress& p) {
     const int width = 30;
     const int done = p.frames > 0 ? int(std::lround(double(width) * p.frame / p.frames)) : 0;
@@ -96,62 +82,63 @@ void run_animate(const AnimateArgs& args) {
             " must be in (0, 120]");
     require(args.edge_cm > 0 && args.edge_cm <= 20, "--edge ", args.edge_cm, " must be in (0, 20] cm");
     require(!args.garments.empty(), "--garment: give at least one RESULT_DIR[:N]");
-    const Eigen::Vector3d wind = parse_wind(args.wind);
+    require(args.motion == "walk" || fs::path(args.motion).extension() == ".bvh", "--motion '", args.motion,
+            "' is neither 'walk' nor a .bvh file");
+    recover::AnimateGarmentsOptions options;
+    options.fps = args.fps;
+    options.seconds = args.seconds;
+    options.edge_cm = args.edge_cm;
+    options.wind_m_per_s = parse_wind(args.wind);
+    std::string why;
+    if (!options.is_valid(&why)) throw InvalidInput("--seconds, --fps, --edge or --wind: " + why);
     install_interrupt_handlers();
-    // Garments, the body and the pose they were draped in (from the first folder).
-    std::vector<io::SavedRecovery> saved;
-    std::vector<garment::GarmentRequest> requests;
-    std::vector<cloth::Material> materials;
-    std::vector<std::string> names;
+    recover::AnimateGarmentsInputs in;
+    in.motion = args.motion;
     for (const std::string& spec : args.garments) {
-        saved.push_back(io::read_recovery_folder(spec));
-        for (const io::SavedGarment& g : saved.back().garments) {
+        const io::SavedRecovery saved = io::read_recovery_folder(spec);
+        if (in.garments.empty()) in.body = saved.body, in.pose = saved.pose;
+        for (const io::SavedGarment& g : saved.garments) {
             if (!g.supported)
                 throw InvalidInput("--garment " + spec + ": garment " + std::to_string(g.index) + " ('" + g.garment +
                                    "') was not recovered (unsupported), it cannot be animated");
-            requests.push_back({g.type, g.sizing, g.material});
-            materials.push_back(g.material);
-            names.push_back(garment::garment_type_name(g.type) + "_" + std::to_string(names.size()));
+            in.garments.push_back({g.type, g.sizing, g.material});
         }
     }
+    std::cerr << "drape animate: dressing " << in.garments.size() << " garment(s)\n";
+    options.on_progress = [](const recover::AnimateGarmentsProgress& p) {
+        if (p.stage == recover::AnimateGarmentsStage::draping) return !interrupted();
+        garment::AnimateProgress q;
+        q.blending = p.stage == recover::AnimateGarmentsStage::blending;
+        q.frame = p.step;
+        q.frames = p.frames;
+        q.seconds = p.seconds;
+        return progress_bar("drape animate", q);
+    };
     const body::BodyModel& model = body::BodyModel::default_model();
-    const body::ShapedBody shaped = shape(model, saved.front().body);
-    const body::Motion motion = read_motion(args.motion, shaped, args.seconds, args.fps);
-    std::cerr << "drape animate: dressing " << requests.size() << " garment(s)\n";
-    garment::DressedOutfit outfit;
-    garment::DressOutfitOptions dress = outfit_options(args.edge_cm);
-    dress.drape.on_progress = [](const garment::DrapeProgress&) { return !interrupted(); };
-    const garment::DressOutfitSummary ds = garment::dress_outfit(model, shaped, saved.front().pose, requests, dress, outfit);
-    if (ds.termination == garment::DressOutfitTermination::cancelled)
-        throw CommandExit{130, "drape animate: cancelled while draping; nothing written"};
-    std::cerr << "drape animate: " << ds.brief_report() << "\n";
-    if (ds.termination != garment::DressOutfitTermination::draped)
-        throw CommandExit{1, "drape animate: the outfit could not be draped: " + ds.message};
-    garment::AnimateOptions options;
-    options.fps = args.fps;
-    options.seconds = args.seconds;
-    options.wind_m_per_s = wind;
-    options.on_progress = [](const garment::AnimateProgress& p) { return progress_bar("drape animate", p); };
-    garment::AnimatedOutfit animated;
-    const garment::AnimateSummary s = garment::animate_outfit(model, shaped, outfit, materials, motion, options, animated);
+    recover::AnimateGarmentsResult r;
+    const recover::AnimateGarmentsSummary s = recover::animate_garments(model, in, options, r);
+    if (in.motion != "walk") {
+        std::cerr << "drape animate: " << in.motion << ": " << r.bvh.file_frames << " frames at " << r.bvh.file_fps
+                  << " fps, " << r.bvh.mapped_joints << " of 22 joints mapped, root scale " << r.bvh.root_scale << "\n";
+        if (r.motion_seconds < args.seconds)
+            std::cerr << "drape animate: the motion lasts " << r.motion_seconds << " s, shorter than --seconds "
+                      << args.seconds << ": its last pose is held\n";
+    }
     std::cerr << "\ndrape animate: " << s.brief_report() << "\n";
-    if (s.termination == garment::AnimateTermination::cancelled)
+    if (s.termination == recover::AnimateGarmentsTermination::cancelled)
         throw CommandExit{130, "drape animate: cancelled; nothing written"};
-    nlohmann::json report = io::animation_json(s);
-    report["motion"] = args.motion;
-    report["fps"] = args.fps;
-    report["wind_m_per_s"] = {wind.x(), wind.y(), wind.z()};
-    report["garments"] = args.garments;
-    report["drape"] = ds.brief_report();
-    if (s.frames == 0) throw CommandExit{1, "drape animate: no frame was simulated: " + s.message};
-    if (!io::write_animation(args.out, model, shaped, outfit, animated, names, report, [] { return !interrupted(); }))
+    if (s.termination == recover::AnimateGarmentsTermination::drape_failed)
+        throw CommandExit{1, "drape animate: the outfit could not be draped: " + s.message};
+    const nlohmann::json report = io::animation_report(s, options, args.motion, args.garments);
+    if (s.animate.frames == 0) throw CommandExit{1, "drape animate: no frame was simulated: " + s.animate.message};
+    if (!io::write_animation(args.out, model, r.shaped, r.outfit, r.animation, r.names, report,
+                             [] { return !interrupted(); }))
         throw CommandExit{130, "drape animate: cancelled; nothing written"};
-    std::cout << "drape animate: wrote " << args.out << " (" << s.frames << " frames)\n";
-    if (!s.usable()) throw CommandExit{1, "drape animate: " + s.brief_report()};
+    std::cout << "drape animate: wrote " << args.out << " (" << s.animate.frames << " frames)\n";
+    if (!s.animate.usable()) throw CommandExit{1, "drape animate: " + s.animate.brief_report()};
 }
 
 // ---- eval-animate ----
-
 struct EvalCase {
     std::string name;
     std::vector<garment::GarmentType> garments;

@@ -85,4 +85,16 @@ nlohmann::json animation_json(const garment::AnimateSummary& s) {
             {"per_frame", frames}};
 }
 
+nlohmann::json animation_report(const recover::AnimateGarmentsSummary& summary,
+                                const recover::AnimateGarmentsOptions& options, const std::string& motion,
+                                const std::vector<std::string>& garments) {
+    nlohmann::json report = animation_json(summary.animate);
+    report["motion"] = motion;
+    report["fps"] = options.fps;
+    report["wind_m_per_s"] = {options.wind_m_per_s.x(), options.wind_m_per_s.y(), options.wind_m_per_s.z()};
+    report["garments"] = garments;
+    report["drape"] = summary.dress.brief_report();
+    return report;
+}
+
 }  // namespace drape::io

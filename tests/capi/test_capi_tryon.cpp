@@ -8,13 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "../common/skirt_scene.hpp"
@@ -52,7 +49,6 @@ drape_tryon_inputs inputs_of(const std::vector<const char*>& garments, drape_bod
     return in;
 }
 
-using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
@@ -209,48 +205,14 @@ TEST_CASE("tryon: bad input is named, and a cancel returns within a step", "[cap
         o.struct_size = sizeof o;
         REQUIRE(drape_tryon_options_init(&o) == DRAPE_OK);
         o.edge_cm = 4.0;
-        struct Cancel {
-            drape_cancel_flag flag = nullptr;
-            std::atomic<bool> armed{false}, done{false};
-            Clock::time_point at{}, previous{};
-            double step_seconds = 0;
-        } c;
-        REQUIRE(drape_cancel_flag_create(&c.flag) == DRAPE_OK);
-        drape_monitor m;
-        m.struct_size = sizeof m;
-        REQUIRE(drape_monitor_init(&m) == DRAPE_OK);
-        m.user = &c;
-        m.cancel = c.flag;
-        m.progress = [](void* user, const drape_progress* p) -> int32_t {
-            auto* s = static_cast<Cancel*>(user);
-            const Clock::time_point now = Clock::now();
-            if (std::string(p->stage) == "draping" && p->step == 3 && !s->armed) {
-                s->step_seconds = std::chrono::duration<double>(now - s->previous).count();
-                s->armed = true;
-            }
-            s->previous = now;
-            return 1;
-        };
-        std::thread canceller([&c] {
-            while (!c.armed && !c.done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-            if (c.done) return;
-            c.at = Clock::now();
-            drape_cancel_flag_set(c.flag);
-        });
-        const drape_status st = drape_tryon(nullptr, &in, &o, &m, &r);
-        const Clock::time_point returned = Clock::now();
-        c.done = true;
-        canceller.join();
-        REQUIRE(c.armed);
+        drape::test::CancelProbe probe("draping", 3);
+        const drape_status st = probe.run([&] { return drape_tryon(nullptr, &in, &o, probe.monitor(), &r); });
+        REQUIRE(probe.armed());
         CHECK(st == DRAPE_ERROR_CANCELLED);
-        CHECK(r == nullptr);
-        const double latency = std::chrono::duration<double>(returned - c.at).count();
-        WARN("drape_tryon returned " << latency << " s after the cancel; the step before took " << c.step_seconds
-                                     << " s");
-        // The try-on asks the monitor after every simulation step: the call returns at the
-        // next one. Bound: two steps as long as the one before, plus 0.5 s.
-        CHECK(latency < 2 * c.step_seconds + 0.5);
-        drape_cancel_flag_destroy(c.flag);
+        WARN("drape_tryon returned " << probe.latency() << " s after the cancel; the step before took "
+                                   << probe.interval() << " s");
+        // The monitor is asked after every step: the call returns at the next one.
+        CHECK(probe.latency() < 2 * probe.interval() + 0.5);
     }
     CHECK(r == nullptr);
     drape_body_destroy(man);

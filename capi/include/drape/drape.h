@@ -600,6 +600,68 @@ DRAPE_API drape_status drape_tryon_get_body(drape_tryon_result result, drape_bod
 DRAPE_API drape_status drape_tryon_write_folder(drape_tryon_result result, const char* folder,
                                                 const drape_monitor* monitor);
 
+/* ---- animation ----------------------------------------------------------------------- */
+
+typedef struct drape_animate_inputs {
+    uint32_t struct_size;
+    const char* const* garments; /* garment_count specs, inner first: "DIR" or "DIR:N" as for
+                                    drape_tryon; the first folder's body (and the pose it was
+                                    draped in) is the body animated; required */
+    size_t garment_count;        /* >= 1 */
+    const char* motion;          /* "walk" (NULL: the built-in walk cycle) or a .bvh file,
+                                    retargeted with the standard joint map (docs/animation.md) */
+} drape_animate_inputs;
+DRAPE_API drape_status drape_animate_inputs_init(drape_animate_inputs* inputs);
+
+typedef struct drape_animate_options {
+    uint32_t struct_size;
+    double seconds;              /* length, (0, 120] s (5); a shorter BVH holds its last pose */
+    double fps;                  /* frame rate, (0, 240] (30) */
+    double edge_cm;              /* mesh edge of the garments, (0, 20] cm (3) */
+    double wind_x, wind_y, wind_z; /* wind, world frame, m/s (0, 0, 0) */
+} drape_animate_options;
+DRAPE_API drape_status drape_animate_options_init(drape_animate_options* options);
+
+typedef struct drape_animation_s* drape_animation;
+
+/** Dresses recovered garments on their body and animates them along the motion, as `drape
+ *  animate` (docs/animation.md): the body moves (walk or BVH), the garments are simulated on
+ *  it with optional wind, every frame is checked. model NULL = the built-in model. options
+ *  and monitor may be NULL; the monitor is called after every drape step (stage "draping")
+ *  and every frame ("blending", "animating"; step = frames done, fraction = of the phase).
+ *  \return DRAPE_OK (every frame made, no frame deeper than 2 mm in the body, no crossing);
+ *          DRAPE_ERROR_NO_CONVERGENCE with an animation when it stopped early or is not
+ *          usable (the frames made are kept; see its JSON), without one when the outfit could
+ *          not be draped; DRAPE_ERROR_INVALID_ARGUMENT (bad folders, options, a BVH that does
+ *          not parse or does not fit, naming the file); DRAPE_ERROR_IO; DRAPE_ERROR_CANCELLED
+ *          (no animation). */
+DRAPE_API drape_status drape_animate(drape_body_model model, const drape_animate_inputs* inputs,
+                                     const drape_animate_options* options, const drape_monitor* monitor,
+                                     drape_animation* out_animation);
+/** Releases the handle and what it owns; NULL is a no-op. */
+DRAPE_API void drape_animation_destroy(drape_animation animation);
+/** animation.json of `drape animate`: frames, vertices, per-frame checks (penetration,
+ *  crossings, speed), the maxima, seconds per frame, the motion, fps, wind and the drape.
+ *  Free with drape_free(). */
+DRAPE_API drape_status drape_animation_json(drape_animation animation, char** out_json);
+/** Output frames and garments of the animation. */
+DRAPE_API drape_status drape_animation_get_counts(drape_animation animation, size_t* frame_count,
+                                                  size_t* garment_count);
+/** Garment `garment`'s vertices at output frame `frame` (#V x 3, world, metres; the vertex
+ *  order of its mesh, drape_animation_get_garment_mesh); size-query protocol. */
+DRAPE_API drape_status drape_animation_get_frame_vertices(drape_animation animation, size_t garment, size_t frame,
+                                                          double* out, size_t capacity, size_t* required);
+/** Garment `garment` as a new mesh handle (pattern, faces, stitches), its vertices as draped
+ *  before the motion. */
+DRAPE_API drape_status drape_animation_get_garment_mesh(drape_animation animation, size_t garment,
+                                                        drape_garment_mesh* out_mesh);
+/** Writes the folder of `drape animate` (animation.glb: the skinned body with its motion and
+ *  each garment as per-frame morph targets; frames/garment_N_KKKK.obj; animation.json):
+ *  staged, then moved in whole; a failure or a cancel (checked before the move; operation
+ *  "write_animation") leaves `folder` as it was. monitor may be NULL. */
+DRAPE_API drape_status drape_animation_write_folder(drape_animation animation, const char* folder,
+                                                    const drape_monitor* monitor);
+
 #ifdef __cplusplus
 }
 #endif

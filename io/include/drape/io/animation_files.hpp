@@ -2,6 +2,8 @@
 // "Output files"), staged and moved in whole as a recovery's.
 #pragma once
 
+#include <drape/recover/animate_garments.hpp>
+
 #include <drape/body/body_model.hpp>
 #include <drape/garment/animate.hpp>
 #include <drape/garment/dress_outfit.hpp>
@@ -29,5 +31,11 @@ bool write_animation(const std::filesystem::path& out, const body::BodyModel& mo
 
 /// The summary of an animation as JSON (per-frame checks included).
 nlohmann::json animation_json(const garment::AnimateSummary& summary);
+
+/// animation.json of `drape animate` and drape_animate: animation_json of the animation, the
+/// motion, fps, wind, the garments' specs ("DIR[:N]") and the drape's brief report.
+nlohmann::json animation_report(const recover::AnimateGarmentsSummary& summary,
+                                const recover::AnimateGarmentsOptions& options, const std::string& motion,
+                                const std::vector<std::string>& garments);
 
 }  // namespace drape::io
