@@ -138,8 +138,8 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
             a = std::move(b);
         }
     }
-    const int substeps = std::clamp(int(std::ceil(fastest / options.max_body_step_m)), options.min_substeps,
-                                    options.max_substeps);
+    const int cap = std::max(options.min_substeps, int(std::ceil(options.max_substeps * 30.0 / options.fps - 1e-9)));
+    const int substeps = std::clamp(int(std::ceil(fastest / options.max_body_step_m)), options.min_substeps, cap);
     cloth::SimulatorOptions sim_options = options.simulator;
     sim_options.wind_m_per_s = options.wind_m_per_s;
     sim_options.time_step_s = 1.0 / (options.fps * substeps);

@@ -71,10 +71,10 @@ TEST_CASE("animate: a skirt walks 0.4 s, every frame checked, read back and writ
     drape_animation a = nullptr;
     const drape_status st = drape_animate(nullptr, &in, &o, &m, &a);
     INFO(last_error());
-    // DRAPE_OK when every frame is within 2 mm of the body and free of crossings; otherwise
-    // NO_CONVERGENCE with the animation (this coarse, short case ran at 2.6 mm once: the
-    // animation's acceptance, docs/animation.md, is measured by drape eval-animate).
-    REQUIRE((st == DRAPE_OK || st == DRAPE_ERROR_NO_CONVERGENCE));
+    // DRAPE_OK: every frame within 2 mm of the body and free of crossings (before the
+    // substep cap scaled with the frame rate this 15 fps walk went 2.6 mm deep at 6 cm and
+    // 57 mm at 4 cm: docs/notes/animation.md).
+    REQUIRE(st == DRAPE_OK);
     REQUIRE(a != nullptr);
     CHECK(seen.draping);
     CHECK(seen.animating);
@@ -87,7 +87,7 @@ TEST_CASE("animate: a skirt walks 0.4 s, every frame checked, read back and writ
     CHECK(j.at("fps").get<double>() == 15.0);
     CHECK(j.at("usable").get<bool>() == (st == DRAPE_OK));
     CHECK(j.at("max_self_intersections").get<int>() == 0);
-    CHECK(j.at("max_penetration_m").get<double>() < 5e-3);
+    CHECK(j.at("max_penetration_m").get<double>() <= 2e-3);
     size_t frames = 0, garment_count = 0;
     REQUIRE(drape_animation_get_counts(a, &frames, &garment_count) == DRAPE_OK);
     CHECK(frames == 7);  // 0.4 s at 15 fps, both ends
