@@ -4,7 +4,7 @@
 #   scripts/fuzz.sh [SECONDS] [NAME...]        fuzz each NAME (default: all) for SECONDS (default 60)
 #   scripts/fuzz.sh --regress [SECONDS] [NAME...]
 #       replay every kept crash of fuzz/regressions/NAME/ (each must now pass), then fuzz
-#       for SECONDS (default 20): the short stage of scripts/test.sh.
+#       for SECONDS (default 20; 0 = replay only): the short stage of scripts/test.sh.
 #
 # Builds only the harnesses asked for (and the libraries they link) with clang,
 # -fsanitize=fuzzer,address,undefined in $DRAPE_FUZZ_BUILD (default build-fuzz/). Seeds come
@@ -58,11 +58,13 @@ for n in "${names[@]}"; do
   fi
   log="$art/fuzz.log"
   start=$(date +%s)
-  if ! "$bin" "${flags[@]}" -max_total_time="$seconds" -artifact_prefix="$art/" "$work" "$here/fuzz/corpus/$n" >"$log" 2>&1; then
+  : >"$log"
+  # --regress 0: replay only (libFuzzer's -max_total_time=0 would mean "no limit").
+  if ((seconds > 0)) && ! "$bin" "${flags[@]}" -max_total_time="$seconds" -artifact_prefix="$art/" "$work" "$here/fuzz/corpus/$n" >"$log" 2>&1; then
     result="CRASH (see $log)"; status=1
   fi
   elapsed=$(( $(date +%s) - start ))
-  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)
+  execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1 || true)
   line=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -1 || true)
   cov=$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$line"); ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$line")
   corp=$(sed -n 's/.* corp: \([0-9]*\).*/\1/p' <<<"$line")

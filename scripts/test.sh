@@ -26,5 +26,11 @@ fi
 
 if [ "${DRAPE_SKIP_FUZZ:-0}" != 1 ]; then
   echo "== Fuzz regression: replay fuzz/regressions/, then each harness 8 s (docs/hardening.md)"
-  "$here/scripts/fuzz.sh" --regress 8
+  # body_model: replay only. Fuzzing it finds crashes inside Debian's libhdf5 on damaged
+  # global heaps within seconds (a hang, a SEGV in H5HG_read, a leak in H5T__conv_vlen: open,
+  # docs/hardening.md), which would fail CI at random.
+  others=()
+  for d in "$here"/fuzz/corpus/*/; do n="$(basename "$d")"; [ "$n" = body_model ] || others+=("$n"); done
+  "$here/scripts/fuzz.sh" --regress 8 "${others[@]}"
+  "$here/scripts/fuzz.sh" --regress 0 body_model
 fi

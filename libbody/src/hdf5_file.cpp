@@ -388,11 +388,17 @@ std::vector<std::string> read_string_data(hid_t type, std::size_t n, ReadFn read
         H5Tset_size(mem.get(), H5T_VARIABLE);
         H5Tset_cset(mem.get(), cset);
         std::vector<char*> ptrs(n, nullptr);
+        // HDF5 allocates each string; a read that fails part way (a damaged file) leaves the
+        // ones it made, and a throw below must not leak them either (found by fuzz_body_model).
+        struct FreeStrings {
+            std::vector<char*>& p;
+            ~FreeStrings() {
+                for (char* q : p)
+                    if (q) H5free_memory(q);
+            }
+        } free_strings{ptrs};
         if (!read(mem.get(), ptrs.data())) fail("cannot be read");
-        for (char* p : ptrs) {
-            out.emplace_back(p ? p : "");
-            H5free_memory(p);
-        }
+        for (char* p : ptrs) out.emplace_back(p ? p : "");
     } else {
         const std::size_t size = H5Tget_size(type);
         if (size == 0) fail("unreadable string type");
