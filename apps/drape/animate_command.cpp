@@ -92,18 +92,7 @@ void run_animate(const AnimateArgs& args) {
     std::string why;
     if (!options.is_valid(&why)) throw InvalidInput("--seconds, --fps, --edge or --wind: " + why);
     install_interrupt_handlers();
-    recover::AnimateGarmentsInputs in;
-    in.motion = args.motion;
-    for (const std::string& spec : args.garments) {
-        const io::SavedRecovery saved = io::read_recovery_folder(spec);
-        if (in.garments.empty()) in.body = saved.body, in.pose = saved.pose;
-        for (const io::SavedGarment& g : saved.garments) {
-            if (!g.supported)
-                throw InvalidInput("--garment " + spec + ": garment " + std::to_string(g.index) + " ('" + g.garment +
-                                   "') was not recovered (unsupported), it cannot be animated");
-            in.garments.push_back({g.type, g.sizing, g.material});
-        }
-    }
+    const recover::AnimateGarmentsInputs in = io::read_animation_inputs(args.garments, args.motion);
     std::cerr << "drape animate: dressing " << in.garments.size() << " garment(s)\n";
     options.on_progress = [](const recover::AnimateGarmentsProgress& p) {
         if (p.stage == recover::AnimateGarmentsStage::draping) return !interrupted();

@@ -3,7 +3,6 @@
 #include "capi_internal.hpp"
 
 #include <drape/io/animation_files.hpp>
-#include <drape/io/recovery_files.hpp>
 
 #include <drape/recover/animate_garments.hpp>
 
@@ -85,8 +84,7 @@ drape_status drape_animate(drape_body_model model, const drape_animate_inputs* i
     return guarded(__func__, [&, function = __func__] {
         const drape_animate_inputs in = read_struct(inputs, "inputs");
         const drape_animate_options opt = read_struct(options, "options");
-        if (in.garment_count == 0 || !in.garments)
-            throw drape::InvalidInput("inputs->garments: give at least one result folder (\"DIR\" or \"DIR:N\")");
+        const std::vector<std::string> specs = strings_of(in.garments, in.garment_count, "inputs->garments");
         dr::AnimateGarmentsOptions o;
         o.seconds = opt.seconds;
         o.fps = opt.fps;
@@ -96,23 +94,7 @@ drape_status drape_animate(drape_body_model model, const drape_animate_inputs* i
         if (!o.is_valid(&why)) throw drape::InvalidInput("options: " + why);
         Monitor mon(monitor, "animate");
         if (!mon.report("reading", -1, 0, 0, 0)) return cancelled(function);
-        dr::AnimateGarmentsInputs a;
-        a.motion = in.motion ? in.motion : "walk";
-        std::vector<std::string> specs;
-        for (size_t k = 0; k < in.garment_count; ++k) {
-            if (!in.garments[k])
-                throw drape::InvalidInput("inputs->garments[" + std::to_string(k) + "] must not be NULL");
-            specs.emplace_back(in.garments[k]);
-            const drape::io::SavedRecovery saved = drape::io::read_recovery_folder(specs.back());
-            if (k == 0) a.body = saved.body, a.pose = saved.pose;
-            for (const drape::io::SavedGarment& g : saved.garments) {
-                if (!g.supported)
-                    throw drape::InvalidInput("inputs->garments[" + std::to_string(k) + "] '" + specs.back() +
-                                              "': garment " + std::to_string(g.index) + " ('" + g.garment +
-                                              "') was not recovered (unsupported), it cannot be animated");
-                a.garments.push_back({g.type, g.sizing, g.material});
-            }
-        }
+        const dr::AnimateGarmentsInputs a = drape::io::read_animation_inputs(specs, in.motion ? in.motion : "walk");
         o.on_progress = [&mon](const dr::AnimateGarmentsProgress& p) {
             const double fraction = p.frames > 0 ? double(p.step) / p.frames : -1;
             return mon.report(stage_name(p.stage), -1, 0, p.step, fraction);

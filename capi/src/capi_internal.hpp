@@ -167,6 +167,10 @@ S read_struct(const S* s, const char* arg) {
 /// A C string argument that may be NULL, as std::string ("" for NULL).
 inline std::string str(const char* s) { return s ? std::string(s) : std::string(); }
 
+/// `count` C strings as std::strings. \throw drape::InvalidInput naming `what` if there are
+/// none (NULL array or count 0) or one is NULL.
+std::vector<std::string> strings_of(const char* const* values, size_t count, const char* what);
+
 /// A copy the caller frees with drape_free(). \throw std::bad_alloc.
 char* copy_string(const std::string& s);
 

@@ -101,14 +101,7 @@ drape_status drape_tryon(drape_body_model model, const drape_tryon_inputs* input
     return guarded(__func__, [&, function = __func__] {
         const drape_tryon_inputs in = read_struct(inputs, "inputs");
         const drape_tryon_options opt = read_struct(options, "options");
-        if (in.garment_count == 0 || !in.garments)
-            throw drape::InvalidInput("inputs->garments: give at least one result folder (\"DIR\" or \"DIR:N\")");
-        std::vector<std::string> specs;
-        for (size_t k = 0; k < in.garment_count; ++k) {
-            if (!in.garments[k])
-                throw drape::InvalidInput("inputs->garments[" + std::to_string(k) + "] must not be NULL");
-            specs.emplace_back(in.garments[k]);
-        }
+        const std::vector<std::string> specs = strings_of(in.garments, in.garment_count, "inputs->garments");
         if ((in.body != nullptr) == (in.image_path != nullptr))
             throw drape::InvalidInput("inputs: give either body (a body target) or image_path (a photo target)");
         if (in.body && (in.joints_path || in.strokes_path || in.palette_path))

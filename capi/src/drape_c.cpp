@@ -160,6 +160,17 @@ drape_status cancelled(const char* function) {
     return fail(DRAPE_ERROR_CANCELLED, [&] { return std::string(function) + ": cancelled"; });
 }
 
+std::vector<std::string> strings_of(const char* const* values, size_t count, const char* what) {
+    if (count == 0 || !values)
+        throw drape::InvalidInput(std::string(what) + ": give at least one result folder (\"DIR\" or \"DIR:N\")");
+    std::vector<std::string> out;
+    for (size_t k = 0; k < count; ++k) {
+        if (!values[k]) throw drape::InvalidInput(std::string(what) + "[" + std::to_string(k) + "] must not be NULL");
+        out.emplace_back(values[k]);
+    }
+    return out;
+}
+
 drape_body_s* new_body(std::shared_ptr<const drape::body::BodyModel> model, const drape::body::SemanticShape& shape,
                        const drape::body::ShapedBody& shaped, const drape::body::Pose& pose) {
     auto b = std::make_unique<drape_body_s>();

@@ -1,6 +1,7 @@
 #include <drape/io/animation_files.hpp>
 
 #include <drape/io/json_io.hpp>
+#include <drape/io/recovery_files.hpp>
 
 #include <drape/body/model_io.hpp>
 #include <drape/core/errors.hpp>
@@ -83,6 +84,23 @@ nlohmann::json animation_json(const garment::AnimateSummary& s) {
             {"cpu_seconds_per_frame", s.cpu_seconds_per_frame},
             {"seconds", s.seconds},
             {"per_frame", frames}};
+}
+
+recover::AnimateGarmentsInputs read_animation_inputs(const std::vector<std::string>& specs, const std::string& motion) {
+    if (specs.empty()) throw InvalidInput("no garment given: name a result folder (DIR or DIR:N)");
+    recover::AnimateGarmentsInputs in;
+    in.motion = motion;
+    for (const std::string& spec : specs) {
+        const SavedRecovery saved = read_recovery_folder(spec);
+        if (&spec == &specs.front()) in.body = saved.body, in.pose = saved.pose;
+        for (const SavedGarment& g : saved.garments) {
+            if (!g.supported)
+                throw InvalidInput(spec + ": garment " + std::to_string(g.index) + " ('" + g.garment +
+                                   "') was not recovered (unsupported), it cannot be animated");
+            in.garments.push_back({g.type, g.sizing, g.material});
+        }
+    }
+    return in;
 }
 
 nlohmann::json animation_report(const recover::AnimateGarmentsSummary& summary,

@@ -32,6 +32,13 @@ bool write_animation(const std::filesystem::path& out, const body::BodyModel& mo
 /// The summary of an animation as JSON (per-frame checks included).
 nlohmann::json animation_json(const garment::AnimateSummary& summary);
 
+/// The inputs of an animation from result folders or synthetic scenes (`specs`: "DIR" or
+/// "DIR:N", inner first; read_recovery_folder): their garments, the body and pose of the first
+/// folder, and `motion`.
+/// \throw drape::InvalidInput if specs is empty, a garment was not recovered (unsupported), or
+///        as read_recovery_folder (naming the folder and field); drape::IoError.
+recover::AnimateGarmentsInputs read_animation_inputs(const std::vector<std::string>& specs, const std::string& motion);
+
 /// animation.json of `drape animate` and drape_animate: animation_json of the animation, the
 /// motion, fps, wind, the garments' specs ("DIR[:N]") and the drape's brief report.
 nlohmann::json animation_report(const recover::AnimateGarmentsSummary& summary,
