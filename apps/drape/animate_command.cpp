@@ -89,8 +89,6 @@ void run_animate(const AnimateArgs& args) {
     options.seconds = args.seconds;
     options.edge_cm = args.edge_cm;
     options.wind_m_per_s = parse_wind(args.wind);
-    std::string why;
-    if (!options.is_valid(&why)) throw InvalidInput("--seconds, --fps, --edge or --wind: " + why);
     install_interrupt_handlers();
     const recover::AnimateGarmentsInputs in = io::read_animation_inputs(args.garments, args.motion);
     std::cerr << "drape animate: dressing " << in.garments.size() << " garment(s)\n";
