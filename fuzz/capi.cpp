@@ -15,9 +15,11 @@
 // whose cancel flag is set, or inputs that cannot be valid, so they only run their
 // validation and reading: the time limit per input is a few seconds.
 //
-// The body model is the 4-vertex model of fuzz/corpus/body_model (DRAPE_FUZZ_MODEL), never
-// the built-in one (model NULL, drape_body_model_default): generating that takes about a
-// minute under ASan, longer than a unit may run. The capi tests cover it.
+// Bodies are made of the built-in model, passed as a handle loaded once per process from
+// capi_default_model.h5 next to the harness (written there by the first run: generating the
+// model takes about a minute under ASan, longer than a unit may run). model NULL and
+// drape_body_model_default are therefore not called (the capi tests cover them); the
+// 4-vertex model of fuzz/corpus/body_model (DRAPE_FUZZ_MODEL) is loaded as a second, odd model.
 #include "fuzz_common.hpp"
 
 #include <drape/drape.h>
@@ -56,6 +58,7 @@ const unsigned char kTinyPng[] = {
     std::abort();
 }
 
+drape_body_model g_default_model = nullptr;  // the built-in model, shared by every input, never destroyed
 int g_error_calls = 0;
 drape_status g_error_status = DRAPE_OK;
 void on_error(void*, drape_status status, const char* message) {
@@ -66,6 +69,8 @@ void on_error(void*, drape_status status, const char* message) {
 
 /// Checks one call's status against the contract.
 drape_status checked(const char* call, drape_status st, int calls_before) {
+    static const bool trace = std::getenv("DRAPE_FUZZ_TRACE") != nullptr;  // to read what an input does
+    if (trace) std::fprintf(stderr, "%s -> %d %s\n", call, int(st), st ? drape_last_error_message() : "");
     if (st == DRAPE_OK) return st;
     if (st < DRAPE_ERROR_INVALID_ARGUMENT || st > DRAPE_ERROR_INTERNAL)
         finding(call, "status " + std::to_string(int(st)) + " is not a drape_status");
@@ -107,7 +112,7 @@ struct Fuzz {
         drape_garment_mesh_destroy(mesh);
         drape_pattern_destroy(pattern);
         drape_body_destroy(body);
-        drape_body_model_destroy(model);
+        if (model != g_default_model) drape_body_model_destroy(model);
         drape_cancel_flag_destroy(cancel);
     }
 
@@ -280,10 +285,14 @@ void Fuzz::step() {
             CALL(drape_body_model_load(DRAPE_FUZZ_MODEL, nullptr));
             if (m && in.ConsumeBool()) CALL(drape_body_model_save(m, out_path()));
             if (m && in.ConsumeBool()) {
-                drape_body_model_destroy(model);
+                if (model != g_default_model) drape_body_model_destroy(model);
                 model = m;
             } else {
                 drape_body_model_destroy(m);
+                if (model != g_default_model && in.ConsumeBool()) {
+                    drape_body_model_destroy(model);
+                    model = g_default_model;
+                }
             }
             break;
         }
@@ -674,6 +683,18 @@ void Fuzz::step() {
 
 }  // namespace
 
+// Outside the units' time limit: the built-in model, from the cache file or generated.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    const std::filesystem::path cache = std::filesystem::read_symlink("/proc/self/exe").parent_path() /
+                                        "capi_default_model.h5";
+    if (drape_body_model_load(cache.c_str(), &g_default_model) != DRAPE_OK) {
+        if (drape_body_model_default(&g_default_model) != DRAPE_OK)
+            finding("drape_body_model_default", drape_last_error_message());
+        (void)drape_body_model_save(g_default_model, cache.c_str());  // best effort
+    }
+    return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     static const bool once = [] {
         drape_set_error_function(on_error, nullptr);
@@ -685,7 +706,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     FuzzedDataProvider in(data, size);
     Fuzz f{in, drape::fuzz::scratch_dir()};
     if (CALL(drape_cancel_flag_create(&f.cancel)) != DRAPE_OK) finding("drape_cancel_flag_create", "failed");
-    if (CALL(drape_body_model_load(DRAPE_FUZZ_MODEL, &f.model)) != DRAPE_OK) finding("drape_body_model_load", "the small model");
+    f.model = g_default_model;
     for (const char* name : {"joints.json", "sizing.json", "material.json", "pattern.json", "arcsim.json"})
         std::filesystem::remove(f.dir / name);
     for (int i = 0; i < kMaxCalls && in.remaining_bytes() > 0; ++i) f.step();
