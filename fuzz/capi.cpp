@@ -102,7 +102,7 @@ struct Fuzz {
     drape_garment_mesh mesh = nullptr;
     drape_simulator sim = nullptr;
     bool sim_small = false;
-    int shapings = 0;  // calls that shape or measure a body: about 0.5 s each under ASan
+    int shapings = 0;  // calls that shape or measure a body: 0.5-2 s each under ASan
     /// Whether one more such call fits in the input's budget (else it gets a NULL body).
     bool shaping() { return shapings++ < 3; }  // a raw mesh of a few vertices: stepping it is cheap
     drape_cancel_flag cancel = nullptr;
