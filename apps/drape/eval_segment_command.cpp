@@ -506,7 +506,8 @@ void add_eval_segment_command(CLI::App& app) {
         {"body-reach-fraction", &o.body_reach_fraction},
         {"sparse-marks-fraction", &o.sparse_marks_fraction},
         {"compact-marks-factor", &o.compact_marks_factor},
-        {"compact-mark-elongation", &o.compact_mark_elongation}};
+        {"compact-mark-elongation", &o.compact_mark_elongation},
+        {"stroke-layout-weight", &o.stroke_layout_weight}};
     add_tuning_options(*cmd, "SegmentationOptions", tuning);
     // WrinkleOptions members exposed for tuning the fold detector with --scale-check.
     vision::WrinkleOptions& w = args->garment.wrinkles;

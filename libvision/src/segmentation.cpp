@@ -50,6 +50,7 @@ bool SegmentationOptions::is_valid(std::string* why) const {
         return fail("compact_marks_factor must be in (0, 1]");
     if (!(compact_mark_elongation > 0)) return fail("compact_mark_elongation must be > 0");
     if (!(body_reach_fraction > 0)) return fail("body_reach_fraction must be > 0");
+    if (!(stroke_layout_weight >= 0)) return fail("stroke_layout_weight must be >= 0");
     if (!(superpixel_fraction > 0)) return fail("superpixel_fraction must be > 0");
     if (!(min_piece_fraction >= 0)) return fail("min_piece_fraction must be >= 0");
     if (!(band_fraction >= 0) || band_fraction > 0.2) return fail("band_fraction must be in [0, 0.2]");
@@ -628,6 +629,27 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
         ramp *= o.body_prior_weight / compact_factor;
         for (size_t k = 0; k < ids.size(); ++k)
             if (ids[k] != o.table.background_id()) p.prior[k] += ramp;
+    }
+    // Where people wear what (the automatic mode's learned layout), through each marked
+    // class's role.
+    const double layout_w = o.stroke_layout_weight;
+    if (joints && layout_w > 0) {
+        const auto learned = detail::learned_layout(small.size(), joints->scaled(s), detail::kLayoutPseudoCount);
+        for (size_t k = 0; k < ids.size(); ++k) {
+            cv::Mat p_role;
+            switch (o.table.role(ids[k])) {
+                case LabelRole::background: p_role = learned[detail::kBackground]; break;
+                case LabelRole::skin: p_role = learned[detail::kSkin]; break;
+                case LabelRole::hair: p_role = learned[detail::kHair]; break;
+                case LabelRole::upper_garment: p_role = learned[detail::kUpper]; break;
+                case LabelRole::lower_garment: p_role = learned[detail::kLower]; break;
+                case LabelRole::full_garment: p_role = learned[detail::kUpper] + learned[detail::kLower]; break;
+                default: p_role = learned[detail::kOther]; break;
+            }
+            cv::Mat log_p;
+            cv::log(cv::max(p_role, 1e-6), log_p);
+            p.prior[k] -= log_p * layout_w;
+        }
     }
     // The marks the full-resolution stages keep fixed: the same tests on each full-size
     // mark (its own colour; the edge distance of its working pixel, in working px).

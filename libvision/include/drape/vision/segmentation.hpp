@@ -74,6 +74,13 @@ struct SegmentationOptions {
     double compact_marks_factor = 0.25;     ///< in (0, 1]
     double compact_mark_elongation = 2.0;   ///< > 0
     double body_reach_fraction = 0.12;      ///< > 0
+    /// Strokes mode with joints: the automatic mode's learned spatial prior as soft
+    /// evidence for the marked classes, each through its role (background, skin, hair,
+    /// upper, lower; a dress: upper or lower; anything else: "other"), this weight x
+    /// -ln p(role | body-frame cell) added to its cost. The marks say which classes are
+    /// worn and their colours; where people wear them bounds what sparse or sloppy marks do
+    /// not (docs/vision.md, "Segmentation"; tuned on the tuning part of photos-dev). 0 = off.
+    double stroke_layout_weight = 0.5;      ///< >= 0
     /// Automatic mode: weight of the learned spatial prior, layout_weight x -ln p(label |
     /// body-frame cell) added to each label's colour cost (docs/vision.md, "Segmentation").
     double layout_weight = 0.5;             ///< >= 0
