@@ -246,7 +246,12 @@ void File::write_int_scalar(const std::string& dataset, int value) {
 }
 
 void File::write_strings(const std::string& dataset, const std::vector<std::string>& values,
-                         std::size_t fixed_size) {
+                         std::size_t fixed_size, bool variable_length) {
+    if (!variable_length && fixed_size == 0) {
+        fixed_size = 1;
+        for (const std::string& v : values) fixed_size = std::max(fixed_size, v.size());
+    }
+    if (variable_length) fixed_size = 0;
     Handle t = utf8_string_type(fixed_size);
     if (!t.valid()) throw IoError("cannot create a string type for '" + dataset + "'");
     if (fixed_size > 0) {
@@ -376,13 +381,18 @@ bool is_scalar_like(const Dims& d) { return d.empty() || (d.size() == 1 && d[0] 
 /// Reads n strings of `type` via `read(memtype, buffer)` (H5Dread or H5Aread).
 template <class ReadFn>
 std::vector<std::string> read_string_data(hid_t type, std::size_t n, ReadFn read,
-                                          const std::function<void(const std::string&)>& fail) {
+                                          const std::function<void(const std::string&)>& fail,
+                                          bool allow_variable) {
     if (H5Tget_class(type) != H5T_STRING) fail("expected strings");
     std::vector<std::string> out;
     if (n == 0) return out;
     const H5T_cset_t cset = H5Tget_cset(type);
     const htri_t variable = H5Tis_variable_str(type);
     if (variable < 0) fail("unreadable string type");
+    if (variable > 0 && !allow_variable)
+        fail("holds variable-length strings, which are not read from untrusted files (libhdf5 crashes on a "
+             "damaged global heap); store fixed-length strings (numpy \"S\" arrays; drape's save_model does), "
+             "or load with ModelLoadOptions::allow_variable_length_strings");
     if (variable > 0) {
         Handle mem = type_handle(H5Tcopy(H5T_C_S1));
         H5Tset_size(mem.get(), H5T_VARIABLE);
@@ -482,7 +492,7 @@ std::vector<std::string> File::read_strings(const std::string& dataset, long siz
     return read_string_data(
         o.type.get(), o.dims[0],
         [ds](hid_t mem, void* buf) { return H5Dread(ds, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0; },
-        [&](const std::string& problem) { fail(dataset, problem); });
+        [&](const std::string& problem) { fail(dataset, problem); }, allow_variable_);
 }
 
 namespace {
@@ -520,7 +530,7 @@ std::string File::read_string_attribute(const std::string& object, const std::st
     const std::string label = object == "/" ? "/@" + name : object + "@" + name;
     return read_string_data(
         o.type.get(), 1, [a](hid_t mem, void* buf) { return H5Aread(a, mem, buf) >= 0; },
-        [&](const std::string& problem) { fail(label, problem); })[0];
+        [&](const std::string& problem) { fail(label, problem); }, allow_variable_)[0];
 }
 
 std::int64_t File::read_int_attribute(const std::string& object, const std::string& name) const {

@@ -66,10 +66,11 @@ public:
                           bool wide = false);
     void write_double_scalar(const std::string& dataset, double value);
     void write_int_scalar(const std::string& dataset, int value);
-    /// 1-D variable-length UTF-8 strings, or null-padded fixed-length ones of
-    /// `fixed_size` bytes (numpy "S" arrays).
+    /// 1-D null-padded fixed-length UTF-8 strings of `fixed_size` bytes (numpy "S"
+    /// arrays; 0 = the longest value's length, at least 1), or, with `variable_length`,
+    /// variable-length ones (h5py.string_dtype()).
     void write_strings(const std::string& dataset, const std::vector<std::string>& values,
-                       std::size_t fixed_size = 0);
+                       std::size_t fixed_size = 0, bool variable_length = false);
     /// Fixed-length (or, with `variable_length`, h5py's default variable-length) UTF-8
     /// string attribute on a group or dataset ("/" for the file).
     void write_string_attribute(const std::string& object, const std::string& name,
@@ -91,10 +92,15 @@ public:
     /// Scalar (or one-element 1-D) floating-point / integer data.
     double read_double_scalar(const std::string& dataset) const;
     std::int64_t read_int_scalar(const std::string& dataset) const;
-    /// 1-D strings, fixed or variable length.
+    /// 1-D strings, fixed length (variable length only if allowed, below).
     std::vector<std::string> read_strings(const std::string& dataset, long size) const;
-    /// Scalar string attribute, fixed or variable length.
+    /// Scalar string attribute, fixed length (variable length only if allowed, below).
     std::string read_string_attribute(const std::string& object, const std::string& name) const;
+    /// Variable-length strings live in the file's global heap, which libhdf5 1.10 reads
+    /// without checking: a damaged one crashes or hangs it (found by fuzzing,
+    /// docs/hardening.md). Off by default: such strings are refused with an error naming
+    /// the dataset, before libhdf5 reads them.
+    void allow_variable_length_strings(bool allow) { allow_variable_ = allow; }
     std::int64_t read_int_attribute(const std::string& object, const std::string& name) const;
 
     /// Throws InvalidInput("file '<path>', dataset '<dataset>': <problem>").
@@ -102,6 +108,7 @@ public:
 
 private:
     struct Impl;
+    bool allow_variable_ = false;
     std::filesystem::path path_;
     std::unique_ptr<Impl> impl_;
 };

@@ -295,8 +295,9 @@ void save_model(const BodyModel& model, const std::filesystem::path& path) {
     });
 }
 
-BodyModel load_model(const std::filesystem::path& path) {
+BodyModel load_model(const std::filesystem::path& path, const ModelLoadOptions& options) {
     h5::File f(path, h5::Mode::read_only);
+    f.allow_variable_length_strings(options.allow_variable_length_strings);
 
     if (!f.has_attribute("/", "format_name"))
         f.fail("/@format_name", "missing attribute; this HDF5 file is not a Drape body model");

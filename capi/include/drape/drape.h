@@ -134,7 +134,10 @@ DRAPE_API drape_status drape_monitor_init(drape_monitor* monitor);
 
 typedef struct drape_body_model_s* drape_body_model;
 
-/** Loads a body model file (HDF5, docs/body-model-format.md). */
+/** Loads a body model file (HDF5, docs/body-model-format.md). Variable-length strings
+ *  (h5py's default) are refused with DRAPE_ERROR_INVALID_ARGUMENT naming the dataset: libhdf5
+ *  reads them from the file's global heap unchecked (docs/hardening.md); store fixed-length
+ *  strings, as drape_body_model_save does. */
 DRAPE_API drape_status drape_body_model_load(const char* path, drape_body_model* out_model);
 /** Writes a model to an HDF5 file (atomically). */
 DRAPE_API drape_status drape_body_model_save(drape_body_model model, const char* path);

@@ -24,12 +24,21 @@ namespace drape::body {
 ///        drape::IoError if the file cannot be written (e.g. the folder does not exist).
 void save_model(const BodyModel& model, const std::filesystem::path& path);
 
+struct ModelLoadOptions {
+    /// Read variable-length strings (h5py's default string type). They live in the file's
+    /// global heap, which libhdf5 1.10 reads unchecked: a damaged one crashes or hangs the
+    /// process (docs/hardening.md). Off: a file holding them is refused, naming the
+    /// dataset, before libhdf5 reads them. Turn on only for files you trust.
+    bool allow_variable_length_strings = false;
+};
+
 /// Reads a model written by save_model or converted by a user (docs/body-model-format.md).
 /// Never prints HDF5 diagnostics; every problem is reported by the exception.
 /// \throw drape::IoError naming the path if the file is missing, unreadable or not HDF5;
 ///        drape::InvalidInput naming the file and dataset if its content is inconsistent
-///        (wrong shape, bad indices, NaN, different skeleton, weights not summing to 1, ...).
-BodyModel load_model(const std::filesystem::path& path);
+///        (wrong shape, bad indices, NaN, different skeleton, weights not summing to 1,
+///        variable-length strings not allowed by `options`, ...).
+BodyModel load_model(const std::filesystem::path& path, const ModelLoadOptions& options = {});
 
 /// Writes a posed body as a rigged glTF 2.0 binary: the shaped rest mesh bound to the
 /// 22-joint skeleton (inverse bind matrices, <= 4 weights per vertex), with the pose set
