@@ -76,6 +76,9 @@ void add_recover_flags(CLI::App* cmd, RecoverFlags& f) {
     cmd->add_option("--material-target", f.material_target,
                     "calibrated (default: K from the calibrated mapping of P) | synthesis (P measured on renders of "
                     "the candidate drapes; docs/material-estimation.md)");
+    cmd->add_option("--max-arm-elevation", f.max_arm_elevation,
+                    "upper arms raised more than this many degrees above hanging are lowered to it before draping "
+                    "(default 90; 180 = off; docs/recovery.md)");
     cmd->add_flag("--joint-pose", f.joint_pose,
                   "after the sizing/material rounds, search the pose of the joints under each garment together with "
                   "the material (paper Algorithm 2; off by default, docs/recovery.md)");

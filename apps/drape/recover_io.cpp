@@ -26,6 +26,7 @@ recover::RecoverOptions recover_options(const RecoverFlags& f, const std::string
     if (f.rounds) options.rounds = *f.rounds;
     options.estimate_material = !f.no_material;
     options.joint_pose_material = f.joint_pose;
+    if (f.max_arm_elevation) options.max_arm_elevation_degrees = *f.max_arm_elevation;
     options.material_target = recover::material_target_from_name(f.material_target);
     struct Printer {
         std::string last_stage;

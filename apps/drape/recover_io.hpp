@@ -27,6 +27,7 @@ struct RecoverFlags {
     bool no_material = false;
     bool joint_pose = false;
     std::string material_target = "calibrated";
+    std::optional<double> max_arm_elevation;
 };
 
 /// Adds the shared flags to a command.

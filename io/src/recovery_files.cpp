@@ -116,7 +116,12 @@ nlohmann::json recovery_json(const std::string& image, const recover::RecoverInp
             {"quality", recover::quality_name(options.quality)},
             {"material_target", recover::material_target_name(options.material_target)},
             {"joint_pose_material", options.joint_pose_material},
-            {"body", {{"params", to_json(result.fit.shape)}, {"pose", to_json(result.pose)}, {"camera", to_json(result.fit.camera)}}},
+            {"max_arm_elevation_degrees", options.max_arm_elevation_degrees},
+            {"body",
+             {{"params", to_json(result.fit.shape)},
+              {"pose", to_json(result.pose)},
+              {"fit_pose", to_json(result.fit.pose)},
+              {"camera", to_json(result.fit.camera)}}},
             {"garments", garments},
             {"summary", summary_json(s)}};
 }

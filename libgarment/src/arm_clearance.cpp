@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -125,6 +126,47 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
     s.left_degrees = raise[1];
     if (summary) *summary = s;
     return raised(raise[0], raise[1]);
+}
+
+body::Pose lower_raised_arms(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                             double max_elevation_degrees, ArmLoweringSummary* summary) {
+    std::string why;
+    require(pose.is_valid(&why), "lower_raised_arms: pose: ", why);
+    require(std::isfinite(max_elevation_degrees) && max_elevation_degrees >= 0 && max_elevation_degrees <= 180,
+            "lower_raised_arms: max_elevation_degrees = ", max_elevation_degrees, " must be in [0, 180]");
+    require(shaped.vertices.rows() == model.vertex_count() && shaped.joints.rows() == body::kJointCount,
+            "lower_raised_arms: the shaped body does not fit the model");
+    ArmLoweringSummary s;
+    body::Pose p = pose;
+    using body::Joint;
+    using body::index;
+    const std::array<std::pair<Joint, Joint>, 2> arms = {std::make_pair(Joint::right_shoulder, Joint::right_elbow),
+                                                         std::make_pair(Joint::left_shoulder, Joint::left_elbow)};
+    for (size_t a = 0; a < arms.size(); ++a) {
+        const body::PosedSkeleton k = body::forward_kinematics(shaped.joints, p);
+        const Eigen::Vector3d down =
+            (k.joints.row(index(Joint::pelvis)) - k.joints.row(index(Joint::neck))).transpose().normalized();
+        const int sj = index(arms[a].first), ej = index(arms[a].second);
+        const Eigen::Vector3d u = (k.joints.row(ej) - k.joints.row(sj)).transpose().normalized();
+        const double elevation = std::acos(std::clamp(u.dot(down), -1.0, 1.0)) * 180 / kPi;
+        double lowered = 0;
+        const Eigen::Vector3d axis = u.cross(down);
+        if (elevation > max_elevation_degrees && axis.norm() > 1e-9) {
+            lowered = elevation - max_elevation_degrees;
+            // A world rotation Q about the shoulder: R_local' = G_parent^T Q G_parent R_local.
+            const Eigen::Matrix3d G = k.global[size_t(body::kJointParents[size_t(sj)])].linear();
+            const Eigen::Matrix3d Q = Eigen::AngleAxisd(lowered * kPi / 180, axis.normalized()).toRotationMatrix();
+            const Eigen::Vector3d r = p.rotations.row(sj).transpose();
+            const Eigen::Matrix3d R =
+                r.norm() > 0 ? Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();
+            const Eigen::AngleAxisd turned(Eigen::Matrix3d(G.transpose() * Q * G * R));
+            p.rotations.row(sj) = (turned.angle() * turned.axis()).transpose();
+        }
+        (a == 0 ? s.right_elevation_degrees : s.left_elevation_degrees) = elevation;
+        (a == 0 ? s.right_lowered_degrees : s.left_lowered_degrees) = lowered;
+    }
+    if (summary) *summary = s;
+    return p;
 }
 
 }  // namespace drape::garment

@@ -39,9 +39,22 @@ double skirt_flare_deg(double hem_width_cm, double r1, double r2) {
     return std::clamp(kPi * hem_width_cm / (2.0 * (r1 + r2)) * 180.0 / kPi, 20.0, 170.0);
 }
 
+// A top's or dress's length in the image: its top row to its hem, but at most
+// kTopAboveShoulders x the body height above the shoulder line (the joints' row): a mask
+// whose top row lies far above the shoulders holds raised sleeves or arms
+// (fashionista_000005's blouse, hands on the head: 77 cm long in its stroke segmentation
+// for a hip-length blouse). On the hand labels of the 30 shared photos with the arms down
+// the top row lies -0.05 to 0.11 H above the shoulder line (017182's high collar), so the
+// cap leaves those alone (a cap at 0.05 H cut 003792's blouse by 8 cm).
+constexpr double kTopAboveShoulders = 0.12;
+double top_length_px(const vision::GarmentFeatures& f, double body_height_px) {
+    if (!std::isfinite(f.hem_below_shoulders_px)) return f.length_px;
+    return std::min(f.length_px, f.hem_below_shoulders_px + kTopAboveShoulders * body_height_px);
+}
+
 void top_from_features(garment::TShirtSizing& t, GarmentChoice choice, const vision::GarmentFeatures& f, double h,
                        double stature) {
-    const double length = feature_cm(f.length_px, h, stature);
+    const double length = feature_cm(top_length_px(f, h), h, stature);
     if (std::isfinite(length)) {
         // The image length runs from the shoulder line to the hem; h2 from the neck point.
         const double h2 = length + 2.0;
@@ -105,8 +118,9 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
             set_if(g.dress.skirt.alpha, skirt_flare_deg(feature_cm(f.hem_width_px, h, stature), g.dress.skirt.r1,
                                                         g.dress.skirt.r2));
             // The bodice ends at the waist: its length is the garment's less the skirt's.
-            if (std::isfinite(skirt_length) && std::isfinite(feature_cm(f.length_px, h, stature))) {
-                const double bodice = feature_cm(f.length_px, h, stature) - skirt_length + 2.0;
+            const double dress_length = feature_cm(top_length_px(f, h), h, stature);
+            if (std::isfinite(skirt_length) && std::isfinite(dress_length)) {
+                const double bodice = dress_length - skirt_length + 2.0;
                 g.dress.bodice.h1 = std::max(8.0, g.dress.bodice.h1 + (bodice - g.dress.bodice.h2));
                 g.dress.bodice.h2 = bodice;
             }
@@ -145,12 +159,30 @@ std::vector<double> lower_bounds(const garment::GarmentSizing& start) {
     const auto params = garment::sizing_parameters(start.type);
     const auto values = garment::sizing_values(start);
     std::vector<double> out(params.size(), std::nan(""));
-    const bool pants = start.type == garment::GarmentType::pants;
+    const garment::Ease ease;  // the proposal's
+    const auto over = [](double e) { return std::max(0.0, e - kMinEaseCm); };
     for (size_t i = 0; i < params.size(); ++i) {
         const std::string& n = params[i].name;
-        const bool girth = (start.type == garment::GarmentType::skirt && n == "l1") || n == "w1" || n == "w2" ||
-                           (pants && (n == "w3" || n == "w4")) || n == "bodice.w1" || n == "bodice.w2";
-        if (girth) out[i] = values[i];
+        double slack = -1;  // < 0: not a girth
+        switch (start.type) {
+            case garment::GarmentType::skirt:
+                if (n == "l1") slack = over(ease.waist_cm) / 2;  // a panel's waist arc: half the girth
+                break;
+            case garment::GarmentType::pants:
+                if (n == "w1") slack = over(ease.waist_cm);
+                if (n == "w2") slack = over(ease.hip_cm);
+                if (n == "w3") slack = over(ease.leg_cm);
+                if (n == "w4") slack = over(ease.leg_cm);
+                break;
+            case garment::GarmentType::tshirt:
+            case garment::GarmentType::dress:
+                // w2: a panel's width, half the chest girth; w1: the sleeve opening, fitted to
+                // the upper arm with the chest's ease at most.
+                if (n == "w2" || n == "bodice.w2") slack = over(ease.chest_cm) / 2;
+                if (n == "w1" || n == "bodice.w1") slack = over(ease.chest_cm) / 2;
+                break;
+        }
+        if (slack >= 0) out[i] = values[i] - slack;
     }
     return out;
 }

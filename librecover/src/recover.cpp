@@ -12,6 +12,7 @@
 #include <drape/cloth/cloth_mesh.hpp>
 #include <drape/cloth/local_curvature.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/garment/arm_clearance.hpp>
 #include <drape/garment/curvature_calibration.hpp>
 #include <drape/garment/garment_type.hpp>
 #include <drape/garment/silhouette_distance.hpp>
@@ -267,7 +268,11 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
             requests.push_back(req);
         }
         // Layer order (outfit_layers: bottom, then the top over its waistband).
-        CandidateDraper draper(model, out.shaped, out.fit.pose, options);
+        // Raised arms lowered (they would drag a top up by its armholes), then the arms
+        // cleared of the trunk by the dressing.
+        const body::Pose drape_pose =
+            garment::lower_raised_arms(model, out.shaped, out.fit.pose, options.max_arm_elevation_degrees);
+        CandidateDraper draper(model, out.shaped, drape_pose, options);
         const garment::DressOutfitSummary dressed = draper.dress(requests);
         summary.seconds_dress = since(ts);
         if (dressed.termination == garment::DressOutfitTermination::meshing_failed)

@@ -130,6 +130,9 @@ bool RecoverOptions::is_valid(std::string* why) const {
     if (generations < 0) return fail("generations must be >= 0 (got " + std::to_string(generations) + ")");
     if (rounds < 1) return fail("rounds must be >= 1 (got " + std::to_string(rounds) + ")");
     if (max_drape_steps < 20) return fail("max_drape_steps must be >= 20 (got " + std::to_string(max_drape_steps) + ")");
+    if (!(max_arm_elevation_degrees >= 0 && max_arm_elevation_degrees <= 180))
+        return fail("max_arm_elevation_degrees must be in [0, 180] (got " + std::to_string(max_arm_elevation_degrees) +
+                    ")");
     if (base_fabric.empty()) return fail("base_fabric is empty");
     return true;
 }

@@ -23,6 +23,7 @@ std::vector<std::pair<std::string, std::pair<double, double>>> GarmentFeatures::
     add("hem_width", hem_width_px);
     add("length", length_px);
     add("length_from_waist", length_from_waist_px);
+    add("hem_below_shoulders", hem_below_shoulders_px);
     add("sleeve_length", sleeve_length_px);
     add("inseam", inseam_px);
     add("neckline_depth", neckline_depth_px);
@@ -49,7 +50,8 @@ GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, con
         }
     if (top < 0) {
         f.top_width_px = f.waist_width_px = f.hip_width_px = f.hem_width_px = f.length_px =
-            f.length_from_waist_px = f.sleeve_length_px = f.inseam_px = f.neckline_depth_px = nan;
+            f.length_from_waist_px = f.hem_below_shoulders_px = f.sleeve_length_px = f.inseam_px =
+                f.neckline_depth_px = nan;
         return f;
     }
     const GarmentPart part = part_of(type);
@@ -68,6 +70,8 @@ GarmentFeatures measure_features(const cv::Mat& full_mask, GarmentType type, con
     const bool legs = type == GarmentType::pants || type == GarmentType::shorts;
     f.hem_width_px = hem_w > 0 ? (legs && runs >= 2 ? hem_w / double(runs) : double(hem_w)) : nan;
     f.length_from_waist_px = bottom + 0.5 > waist_y ? bottom + 0.5 - waist_y : nan;
+    const double shoulder_y = j.mid_shoulder().y();
+    f.hem_below_shoulders_px = bottom + 0.5 > shoulder_y ? bottom + 0.5 - shoulder_y : nan;
     f.sleeve_length_px = nan;
     f.neckline_depth_px = nan;
     f.inseam_px = nan;

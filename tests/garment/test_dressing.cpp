@@ -1013,6 +1013,51 @@ TEST_CASE("arms are raised just clear of the trunk, and only where they cross it
     CHECK_THROWS_AS(clear_arms_from_trunk(model, slim, down, bad), drape::InvalidInput);
 }
 
+TEST_CASE("raised arms are lowered to the elevation limit, in the plane of arm and trunk", "[garment][dressing][pose]") {
+    const body::BodyModel& model = body::BodyModel::default_model();
+    const body::ShapedBody median = shaped_eval_body(model, kEvalBodies[1]);
+    const body::Pose a = body::named_pose(body::NamedPose::a_pose);
+    // Elevation of an upper arm, measured here from the posed joints (0 = hanging).
+    auto elevation = [&](const body::Pose& p, body::Joint shoulder, body::Joint elbow) {
+        const Eigen::MatrixX3d J = body::pose_body(model, median, p).joints;
+        const Eigen::Vector3d down = (J.row(body::index(body::Joint::pelvis)) - J.row(body::index(body::Joint::neck)))
+                                         .transpose()
+                                         .normalized();
+        const Eigen::Vector3d u = (J.row(body::index(elbow)) - J.row(body::index(shoulder))).transpose().normalized();
+        return std::acos(std::clamp(u.dot(down), -1.0, 1.0)) * 180 / 3.14159265358979323846;
+    };
+    const double a_right = elevation(a, body::Joint::right_shoulder, body::Joint::right_elbow);
+    // The right arm raised well above the head, the left one left in the A-pose.
+    const body::Pose up = raise_arms(a, 110, 0);
+    const double up_right = elevation(up, body::Joint::right_shoulder, body::Joint::right_elbow);
+    REQUIRE(up_right > 120);
+    ArmLoweringSummary s;
+    const body::Pose lowered = lower_raised_arms(model, median, up, 90, &s);
+    CHECK(s.right_elevation_degrees == Approx(up_right).margin(1e-6));
+    CHECK(s.right_lowered_degrees == Approx(up_right - 90).margin(1e-6));
+    CHECK(elevation(lowered, body::Joint::right_shoulder, body::Joint::right_elbow) == Approx(90).margin(0.5));
+    // In the plane of the arm and the trunk: the lowered upper arm lies in the plane of the
+    // raised one and the neck -> pelvis line (both poses share the trunk).
+    const Eigen::MatrixX3d J0 = body::pose_body(model, median, up).joints, J1 = body::pose_body(model, median, lowered).joints;
+    const int re = body::index(body::Joint::right_elbow), rs = body::index(body::Joint::right_shoulder);
+    const Eigen::Vector3d down =
+        (J0.row(body::index(body::Joint::pelvis)) - J0.row(body::index(body::Joint::neck))).transpose().normalized();
+    const Eigen::Vector3d u0 = (J0.row(re) - J0.row(rs)).transpose().normalized();
+    const Eigen::Vector3d u1 = (J1.row(re) - J1.row(rs)).transpose().normalized();
+    CHECK(std::abs(u1.dot(u0.cross(down).normalized())) < 1e-6);
+    CHECK((J1.row(rs) - J0.row(rs)).norm() < 1e-9);
+    // An arm below the limit and every other joint are unchanged.
+    CHECK(s.left_lowered_degrees == 0);
+    CHECK(s.left_elevation_degrees < 90);
+    for (int j = 0; j < body::kJointCount; ++j)
+        if (j != rs) CHECK(lowered.rotations.row(j) == up.rotations.row(j));
+    CHECK(lower_raised_arms(model, median, a, 90).rotations == a.rotations);
+    CHECK(a_right < 90);
+    // Bad limits.
+    CHECK_THROWS_AS(lower_raised_arms(model, median, a, -1), drape::InvalidInput);
+    CHECK_THROWS_AS(lower_raised_arms(model, median, a, std::nan("")), drape::InvalidInput);
+}
+
 // Diagnostic (hidden): how far down the arms the sleeve caps of the proposed t-shirt and
 // dress start in the rest A-pose, on the five evaluation bodies and on the bodies of
 // DRAPE_DIAG_BODIES (semicolon-separated diag_body specs).

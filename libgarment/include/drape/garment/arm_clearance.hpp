@@ -46,4 +46,22 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
                                  const body::Pose& pose, const ArmClearanceOptions& options = {},
                                  ArmClearanceSummary* summary = nullptr);
 
+/// What lower_raised_arms did.
+struct ArmLoweringSummary {
+    double right_elevation_degrees = 0;  ///< the right upper arm's elevation before (0 = hanging, 180 = up)
+    double left_elevation_degrees = 0;
+    double right_lowered_degrees = 0;    ///< how far it was lowered (0 if at most the limit)
+    double left_lowered_degrees = 0;
+};
+
+/// `pose` with each upper arm raised more than `max_elevation_degrees` above hanging (the
+/// angle between shoulder -> elbow and neck -> pelvis, posed) lowered to that elevation, in
+/// the plane of the arm and the trunk; the forearm follows. A top dressed on a body whose
+/// hands rest on its head is dragged up and out by its armholes: draped with the arms at
+/// most at the limit, it hangs as it does on the person (docs/recovery.md). Arms at or below
+/// the limit are not changed. \throw drape::InvalidInput on an invalid pose, a limit outside
+/// [0, 180] or a body that does not fit the model.
+body::Pose lower_raised_arms(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                             double max_elevation_degrees, ArmLoweringSummary* summary = nullptr);
+
 }  // namespace drape::garment

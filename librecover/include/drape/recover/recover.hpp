@@ -99,6 +99,12 @@ struct RecoverOptions {
     int generations = 6;                   ///< per sizing search
     int rounds = 2;                        ///< G/C alternations at most (the paper: about 4)
     int max_drape_steps = 400;             ///< dynamic steps of a full drape (dress_outfit)
+    /// Upper arms raised more than this above hanging (hands on the head or in the hair) are
+    /// lowered to it before dressing (garment::lower_raised_arms): a top or dress is dragged
+    /// up by its armholes on raised arms. The garments are draped, and the mask drawn, in
+    /// that pose (RecoveryResult::pose); the photo fit's pose stays in RecoveryResult::fit.
+    /// [0, 180]; 180 = off (docs/recovery.md).
+    double max_arm_elevation_degrees = 90.0;
     /// Estimate the material (false: keep the base fabric at bending ×1).
     bool estimate_material = true;
     /// The base fabric of the paper's material space (bending scale ×1…×100).

@@ -27,6 +27,9 @@ struct GarmentFeatures {
     double hem_width_px = 0;       ///< width 3 % above the lowest row; per leg for pants/shorts
     double length_px = 0;          ///< top row to lowest row of the garment
     double length_from_waist_px = 0;  ///< natural waist row to lowest row
+    /// Shoulder line (the shoulder joints' mean row) to the lowest row: the length of a top
+    /// or dress whatever the arms do (raised arms lift the top row to the elbows).
+    double hem_below_shoulders_px = 0;
     double sleeve_length_px = 0;   ///< upper/dress: covered arm length from the shoulder
     double inseam_px = 0;          ///< pants/shorts: crotch row to hem row
     double neckline_depth_px = 0;  ///< upper/dress: neck joint down to the first garment row
