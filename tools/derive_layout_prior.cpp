@@ -12,6 +12,7 @@
 // tights, accessories; a dress counts as upper above the natural waist, 62 % shoulder ->
 // hip, and as lower below) per frame cell, every photo
 // also counted mirrored (left and right joints swapped), every second pixel in x and y.
+#include "body_layout.hpp"
 #include "layout_frame.hpp"
 #include "photo_folder.hpp"
 
@@ -46,18 +47,6 @@ Joints mirrored(const Joints& j, int width) {
     return out;
 }
 
-int auto_class(LabelRole r, bool below_waist) {
-    switch (r) {
-        case LabelRole::skin: return 1;
-        case LabelRole::hair: return 2;
-        case LabelRole::upper_garment: return 3;
-        case LabelRole::lower_garment: return 4;
-        case LabelRole::full_garment: return below_waist ? 4 : 3;
-        case LabelRole::background: return 0;
-        default: return 5;  // occluders (bags, belts, outerwear, ...) and the rest (shoes, tights, ...)
-    }
-}
-
 void count(const cv::Mat& labels, const Joints& j, const LabelTable& table,
            std::vector<std::array<std::uint64_t, 6>>& counts) {
     const auto seg = drape::vision::detail::frame_segments(j);
@@ -71,7 +60,7 @@ void count(const cv::Mat& labels, const Joints& j, const LabelTable& table,
         for (int x = 0; x < labels.cols; x += 2) {
             const Eigen::Vector2d p(x + 0.5, y + 0.5);
             const bool below = down.dot(p - wr) > 0;
-            const int c = auto_class(table.role(labels.at<std::uint8_t>(y, x)), below);
+            const int c = drape::vision::detail::auto_label_of(table.role(labels.at<std::uint8_t>(y, x)), below);
             ++counts[size_t(drape::vision::detail::frame_cell(seg, H, p))][size_t(c)];
         }
 }

@@ -66,12 +66,7 @@ void rotate_world(const Eigen::Matrix<double, kJointCount, 3>& rest, Posed& p, i
                   const Eigen::Matrix3d& delta) {
     const int parent = kJointParents[j];
     const Eigen::Matrix3d G = parent < 0 ? Eigen::Matrix3d::Identity() : p.frames.rotation[parent];
-    Eigen::Vector3d aa = p.rotations.row(j).transpose();
-    const double angle = aa.norm();
-    const Eigen::Matrix3d local = angle > 0 ? Eigen::AngleAxisd(angle, aa / angle).toRotationMatrix()
-                                            : Eigen::Matrix3d::Identity();
-    const Eigen::AngleAxisd updated(G.transpose() * delta * G * local);
-    p.rotations.row(j) = (updated.angle() * updated.axis()).transpose();
+    p.rotations.row(j) = rotated_in_world(p.rotations.row(j).transpose(), G, delta).transpose();
     update(rest, p);
 }
 

@@ -246,24 +246,17 @@ void File::write_int_scalar(const std::string& dataset, int value) {
 }
 
 void File::write_strings(const std::string& dataset, const std::vector<std::string>& values,
-                         std::size_t fixed_size, bool variable_length) {
-    if (!variable_length && fixed_size == 0) {
+                         std::size_t fixed_size) {
+    if (fixed_size == 0) {
         fixed_size = 1;
         for (const std::string& v : values) fixed_size = std::max(fixed_size, v.size());
     }
-    if (variable_length) fixed_size = 0;
     Handle t = utf8_string_type(fixed_size);
     if (!t.valid()) throw IoError("cannot create a string type for '" + dataset + "'");
-    if (fixed_size > 0) {
-        std::vector<char> buffer(values.size() * fixed_size, '\0');
-        for (std::size_t i = 0; i < values.size(); ++i)
-            values[i].copy(buffer.data() + i * fixed_size, std::min(fixed_size, values[i].size()));
-        write_raw(impl_->file.get(), path_, dataset, t.get(), t.get(), {values.size()}, buffer.data());
-        return;
-    }
-    std::vector<const char*> ptrs;
-    for (const std::string& s : values) ptrs.push_back(s.c_str());
-    write_raw(impl_->file.get(), path_, dataset, t.get(), t.get(), {values.size()}, ptrs.data());
+    std::vector<char> buffer(values.size() * fixed_size, '\0');
+    for (std::size_t i = 0; i < values.size(); ++i)
+        values[i].copy(buffer.data() + i * fixed_size, std::min(fixed_size, values[i].size()));
+    write_raw(impl_->file.get(), path_, dataset, t.get(), t.get(), {values.size()}, buffer.data());
 }
 
 void File::write_string_attribute(const std::string& object, const std::string& name,

@@ -67,10 +67,9 @@ public:
     void write_double_scalar(const std::string& dataset, double value);
     void write_int_scalar(const std::string& dataset, int value);
     /// 1-D null-padded fixed-length UTF-8 strings of `fixed_size` bytes (numpy "S"
-    /// arrays; 0 = the longest value's length, at least 1), or, with `variable_length`,
-    /// variable-length ones (h5py.string_dtype()).
+    /// arrays; 0 = the longest value's length, at least 1).
     void write_strings(const std::string& dataset, const std::vector<std::string>& values,
-                       std::size_t fixed_size = 0, bool variable_length = false);
+                       std::size_t fixed_size = 0);
     /// Fixed-length (or, with `variable_length`, h5py's default variable-length) UTF-8
     /// string attribute on a group or dataset ("/" for the file).
     void write_string_attribute(const std::string& object, const std::string& name,

@@ -163,6 +163,13 @@ double JointLimits::violation(const Pose& pose) const {
     return sum;
 }
 
+Eigen::Vector3d rotated_in_world(const Eigen::Vector3d& local_axis_angle, const Eigen::Matrix3d& parent_world_rotation,
+                                 const Eigen::Matrix3d& world_rotation) {
+    const Eigen::AngleAxisd turned(Eigen::Matrix3d(parent_world_rotation.transpose() * world_rotation *
+                                                   parent_world_rotation * rotation_of(local_axis_angle)));
+    return turned.angle() * turned.axis();
+}
+
 PosedSkeleton forward_kinematics(const Eigen::Matrix<double, kJointCount, 3>& rest_joints,
                                  const Pose& pose) {
     std::string why;

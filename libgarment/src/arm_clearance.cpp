@@ -153,14 +153,9 @@ body::Pose lower_raised_arms(const body::BodyModel& model, const body::ShapedBod
         const Eigen::Vector3d axis = u.cross(down);
         if (elevation > max_elevation_degrees && axis.norm() > 1e-9) {
             lowered = elevation - max_elevation_degrees;
-            // A world rotation Q about the shoulder: R_local' = G_parent^T Q G_parent R_local.
             const Eigen::Matrix3d G = k.global[size_t(body::kJointParents[size_t(sj)])].linear();
             const Eigen::Matrix3d Q = Eigen::AngleAxisd(lowered * kPi / 180, axis.normalized()).toRotationMatrix();
-            const Eigen::Vector3d r = p.rotations.row(sj).transpose();
-            const Eigen::Matrix3d R =
-                r.norm() > 0 ? Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();
-            const Eigen::AngleAxisd turned(Eigen::Matrix3d(G.transpose() * Q * G * R));
-            p.rotations.row(sj) = (turned.angle() * turned.axis()).transpose();
+            p.rotations.row(sj) = body::rotated_in_world(p.rotations.row(sj).transpose(), G, Q).transpose();
         }
         (a == 0 ? s.right_elevation_degrees : s.left_elevation_degrees) = elevation;
         (a == 0 ? s.right_lowered_degrees : s.left_lowered_degrees) = lowered;

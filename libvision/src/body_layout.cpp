@@ -93,6 +93,18 @@ BodyLayout body_layout(cv::Size size, const Joints& j) {
     return out;
 }
 
+AutoLabel auto_label_of(LabelRole role, bool below_waist) {
+    switch (role) {
+        case LabelRole::background: return kBackground;
+        case LabelRole::skin: return kSkin;
+        case LabelRole::hair: return kHair;
+        case LabelRole::upper_garment: return kUpper;
+        case LabelRole::lower_garment: return kLower;
+        case LabelRole::full_garment: return below_waist ? kLower : kUpper;
+        default: return kOther;
+    }
+}
+
 std::array<cv::Mat, kAutoLabels> learned_layout(cv::Size size, const Joints& j,
                                                 double pseudo_count) {
     static_assert(kLayoutPriorClasses == kAutoLabels, "the table's classes are the AutoLabels");

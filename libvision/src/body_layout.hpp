@@ -4,6 +4,7 @@
 #pragma once
 
 #include <drape/vision/joints.hpp>
+#include <drape/vision/label_table.hpp>
 
 #include <opencv2/core.hpp>
 
@@ -16,6 +17,11 @@ namespace drape::vision::detail {
 /// outerwear, shoes, tights, accessories).
 enum AutoLabel : int { kBackground = 0, kSkin = 1, kHair = 2, kUpper = 3, kLower = 4, kOther = 5 };
 inline constexpr int kAutoLabels = 6;
+
+/// The automatic label a class of role `role` counts as in the learned layout: occluders
+/// (bags, belts, outerwear, ...) and every other worn class (shoes, tights, ...) are
+/// kOther; a dress (full_garment) is kUpper above the natural waist, kLower below it.
+AutoLabel auto_label_of(LabelRole role, bool below_waist);
 
 /// Smoothing of learned_layout: samples of the overall class frequencies added to each cell.
 inline constexpr double kLayoutPseudoCount = 20.0;

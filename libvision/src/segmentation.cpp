@@ -631,24 +631,17 @@ SegmentationSummary segment_with_strokes(const cv::Mat& image, const cv::Mat& st
             if (ids[k] != o.table.background_id()) p.prior[k] += ramp;
     }
     // Where people wear what (the automatic mode's learned layout), through each marked
-    // class's role.
-    const double layout_w = o.stroke_layout_weight;
-    if (joints && layout_w > 0) {
+    // class's role; a dress is upper or lower, wherever its waist is.
+    if (joints && o.stroke_layout_weight > 0) {
         const auto learned = detail::learned_layout(small.size(), joints->scaled(s), detail::kLayoutPseudoCount);
         for (size_t k = 0; k < ids.size(); ++k) {
-            cv::Mat p_role;
-            switch (o.table.role(ids[k])) {
-                case LabelRole::background: p_role = learned[detail::kBackground]; break;
-                case LabelRole::skin: p_role = learned[detail::kSkin]; break;
-                case LabelRole::hair: p_role = learned[detail::kHair]; break;
-                case LabelRole::upper_garment: p_role = learned[detail::kUpper]; break;
-                case LabelRole::lower_garment: p_role = learned[detail::kLower]; break;
-                case LabelRole::full_garment: p_role = learned[detail::kUpper] + learned[detail::kLower]; break;
-                default: p_role = learned[detail::kOther]; break;
-            }
+            const LabelRole role = o.table.role(ids[k]);
+            const cv::Mat p_role = role == LabelRole::full_garment
+                                       ? cv::Mat(learned[detail::kUpper] + learned[detail::kLower])
+                                       : learned[detail::auto_label_of(role, false)];
             cv::Mat log_p;
             cv::log(cv::max(p_role, 1e-6), log_p);
-            p.prior[k] -= log_p * layout_w;
+            p.prior[k] -= log_p * o.stroke_layout_weight;
         }
     }
     // The marks the full-resolution stages keep fixed: the same tests on each full-size

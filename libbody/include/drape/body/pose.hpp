@@ -61,6 +61,13 @@ struct PosedSkeleton {
 PosedSkeleton forward_kinematics(const Eigen::Matrix<double, kJointCount, 3>& rest_joints,
                                  const Pose& pose);
 
+/// A joint's parent-relative axis-angle rotation after turning the joint (and so its
+/// subtree) by `world_rotation` about its own origin, in the world frame:
+/// R' = G^T world_rotation G R, G the parent's world rotation (PosedSkeleton::global of
+/// the parent; identity for the root).
+Eigen::Vector3d rotated_in_world(const Eigen::Vector3d& local_axis_angle, const Eigen::Matrix3d& parent_world_rotation,
+                                 const Eigen::Matrix3d& world_rotation);
+
 /// Linear blend skinning of rest vertices (#V x 3) with the model's weights.
 /// \throw drape::InvalidInput on size mismatch or an invalid pose.
 Eigen::MatrixXd skin_vertices(const BodyModel& model, const Eigen::MatrixXd& rest_vertices,
