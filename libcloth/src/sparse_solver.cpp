@@ -38,6 +38,21 @@ private:
 #endif
 };
 
+// CHOLMOD's symbolic analysis runs METIS, whose random generator is global state in GKlib,
+// and its supernodal factorisation and solve run the system's BLAS. Debian's serial OpenBLAS
+// (0.3.21, the one scripts/setup.sh installs) is not safe for concurrent callers: two
+// simulators factorising on two threads at once corrupted each other's factors, so garment
+// recovery's parallel re-drapes differed from the same re-drapes in turn by up to 22 mm and
+// took other Newton paths (measured 2026-11-27: identical with the reference BLAS, or with
+// this lock). Every call into CHOLMOD therefore runs one at a time in the process. It costs
+// no measured speed: two threads re-draping a skirt took 1.82 s with the lock, 2.27 s without
+// (the unlocked calls contend for the same 2 cores); assembly and contact, the rest of a
+// step, stay parallel. tests/cloth/test_sparse_solver.cpp checks the bit-identical results.
+std::mutex& library_calls() {
+    static std::mutex m;
+    return m;
+}
+
 }  // namespace
 
 struct SparseSpdSolver::Impl {
@@ -73,17 +88,14 @@ void SparseSpdSolver::reset() {
 
 bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& m) {
     [[maybe_unused]] const SingleThreadedOpenMp single_threaded;
-    if (!impl_->analysed) {
-        // The symbolic analysis runs METIS (CHOLMOD's ordering), whose random generator
-        // keeps global state in GKlib builds: simulators on several threads (garment
-        // recovery runs one per thread) analyse one at a time. Suspected, not proven, cause
-        // of two threaded re-drapes differing from serial ones by rounding (notes/dressing.md).
-        static std::mutex metis;
-        const std::lock_guard<std::mutex> lock(metis);
-        impl_->solver.analyzePattern(m);
-        impl_->analysed = true;
+    {
+        const std::lock_guard<std::mutex> lock(library_calls());
+        if (!impl_->analysed) {
+            impl_->solver.analyzePattern(m);
+            impl_->analysed = true;
+        }
+        impl_->solver.factorize(m);
     }
-    impl_->solver.factorize(m);
     if (impl_->solver.info() != Eigen::Success) return false;
 #ifndef DRAPE_CLOTH_HAVE_CHOLMOD
     // LDLᵀ succeeds on indefinite matrices too: require a positive D.
@@ -94,6 +106,7 @@ bool SparseSpdSolver::factorize(const Eigen::SparseMatrix<double>& m) {
 
 Eigen::VectorXd SparseSpdSolver::solve(const Eigen::VectorXd& rhs) const {
     [[maybe_unused]] const SingleThreadedOpenMp single_threaded;
+    const std::lock_guard<std::mutex> lock(library_calls());
     return impl_->solver.solve(rhs);
 }
 
