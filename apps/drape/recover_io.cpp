@@ -28,6 +28,7 @@ recover::RecoverOptions recover_options(const RecoverFlags& f, const std::string
     options.joint_pose_material = f.joint_pose;
     if (f.max_arm_elevation) options.max_arm_elevation_degrees = *f.max_arm_elevation;
     options.material_target = recover::material_target_from_name(f.material_target);
+    options.output_drape = recover::output_drape_from_name(f.output_drape);
     struct Printer {
         std::string last_stage;
         std::chrono::steady_clock::time_point last_print = std::chrono::steady_clock::now() - std::chrono::seconds(10);

@@ -47,7 +47,7 @@ struct StructTraits<drape_recover_options> {
     static auto fields() {
         using S = drape_recover_options;
         return std::make_tuple(&S::quality, &S::threads, &S::seed, &S::particles, &S::generations, &S::rounds,
-                               &S::estimate_material);
+                               &S::estimate_material, &S::output_drape);
     }
     static drape_recover_options defaults() {
         const drape::recover::RecoverOptions o;
@@ -60,6 +60,7 @@ struct StructTraits<drape_recover_options> {
         d.generations = 0;
         d.rounds = 0;
         d.estimate_material = o.estimate_material ? 1 : 0;
+        d.output_drape = nullptr;
         return d;
     }
 };
@@ -108,6 +109,7 @@ drape_status drape_recover(drape_body_model model, const drape_recover_inputs* i
         if (opt.generations) o.generations = opt.generations;
         if (opt.rounds) o.rounds = opt.rounds;
         o.estimate_material = opt.estimate_material != 0;
+        if (opt.output_drape) o.output_drape = dr::output_drape_from_name(opt.output_drape);
         std::string why;
         if (!o.is_valid(&why)) throw drape::InvalidInput("options: " + why);
         o.on_progress = [&mon](const dr::RecoverProgress& p) {

@@ -29,7 +29,9 @@ nlohmann::json drape_json(const recover::DrapeState& d) {
             {"converged", d.converged},
             {"penetration_max_m", d.penetration_max_m},
             {"seam_gap_max_m", d.seam_gap_max_m},
-            {"self_intersections", d.self_intersections}};
+            {"self_intersections", d.self_intersections},
+            {"mesh", d.source == recover::DrapeState::Source::search ? "search" : "output"},
+            {"edge_cm", d.edge_cm}};
 }
 
 namespace {
@@ -117,6 +119,7 @@ nlohmann::json recovery_json(const std::string& image, const recover::RecoverInp
             {"material_target", recover::material_target_name(options.material_target)},
             {"joint_pose_material", options.joint_pose_material},
             {"max_arm_elevation_degrees", options.max_arm_elevation_degrees},
+            {"output_drape", recover::output_drape_name(options.output_drape)},
             {"body",
              {{"params", to_json(result.fit.shape)},
               {"pose", to_json(result.pose)},

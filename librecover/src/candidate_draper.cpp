@@ -65,6 +65,10 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
     c.mesh = d.mesh();
     c.positions = r.positions.rowwise() + offset_.transpose();
     c.usable = r.usable(d.options().drape);
+    c.converged = r.converged;
+    c.penetration_max_m = r.penetration_max_m;
+    c.seam_gap_max_m = r.seam_gap_max_m;
+    c.self_intersections = r.self_intersections;
     for (size_t i = 0; i < outfit_.meshes.size(); ++i) {
         if (static_cast<int>(i) == index) continue;
         c.other_meshes.push_back(current_meshes_[i]);
@@ -76,6 +80,17 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
 
 Eigen::MatrixX3d CandidateDraper::posed_body(const body::Pose& pose) const {
     return body::pose_body(model_, shaped_, pose).vertices;
+}
+
+body::Pose CandidateDraper::photo_pose() const {
+    body::Pose p = pose_;
+    p.translation += offset_;
+    return p;
+}
+
+Eigen::MatrixX3d CandidateDraper::photo_body() const {
+    const Eigen::MatrixX3d b = body_.rows() > 0 ? body_ : outfit_.body_vertices;
+    return b.rowwise() + offset_.transpose();
 }
 
 void CandidateDraper::set_pose(const body::Pose& pose) {

@@ -22,6 +22,9 @@ struct DrapedCandidate {
     std::vector<Eigen::MatrixX3d> other_positions;
     std::vector<int> other_index;                    ///< their indices in the outfit
     bool usable = false;                             ///< the re-drape settled cleanly
+    bool converged = false;                          ///< it settled within its steps
+    double penetration_max_m = 0, seam_gap_max_m = 0;
+    int self_intersections = 0;
 };
 
 class CandidateDraper {
@@ -60,6 +63,11 @@ class CandidateDraper {
     /// of the other garments see it as it now lies (a top's hem over the pants' waist).
     void set_sizing(int index, const garment::GarmentSizing& sizing);
     void set_material(int index, const cloth::Material& material);
+
+    /// The draping pose and the body posed in it, in the photo's frame (the root translation
+    /// added): where the candidates lie.
+    body::Pose photo_pose() const;
+    Eigen::MatrixX3d photo_body() const;
 
     /// The output drape: the outfit at the output resolution, arms cleared if needed.
     garment::DressOutfitSummary final_drape(const std::vector<garment::GarmentRequest>& requests,

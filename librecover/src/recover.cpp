@@ -471,31 +471,67 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
             final_requests.push_back(r);
         }
         garment::DressedOutfit final_outfit;
-        const garment::DressOutfitSummary fs = draper.final_drape(final_requests, final_outfit);
-        summary.seconds_final = since(ts);
-        if (fs.termination == garment::DressOutfitTermination::meshing_failed)
-            return finish(RecoverTermination::drape_failed, fs.message);
-        if (fs.termination == garment::DressOutfitTermination::cancelled) throw Cancelled{};
+        const bool fresh = options.output_drape != OutputDrape::search;
+        garment::DressOutfitSummary fs;
+        if (fresh) {
+            fs = draper.final_drape(final_requests, final_outfit);
+            if (fs.termination == garment::DressOutfitTermination::meshing_failed)
+                return finish(RecoverTermination::drape_failed, fs.message);
+            if (fs.termination == garment::DressOutfitTermination::cancelled) throw Cancelled{};
+            out.pose = final_outfit.pose;
+            out.body_vertices = final_outfit.body_vertices;
+        } else {
+            out.pose = draper.photo_pose();
+            out.body_vertices = draper.photo_body();
+        }
         report(Stage::measuring, -1, 0, 0);
-        out.pose = final_outfit.pose;
-        out.body_vertices = final_outfit.body_vertices;
-        OutfitView final_view(model, out.body_vertices, out.fit.camera, in.image_bgr.cols, in.image_bgr.rows);
         for (size_t i = 0; i < out.garments.size(); ++i) {
             RecoveredGarment& g = out.garments[i];
-            g.pattern = final_outfit.patterns[i];
-            g.mesh = final_outfit.meshes[i];
-            g.positions = final_outfit.positions[i];
+            if (fresh) {
+                g.pattern = final_outfit.patterns[i];
+                g.mesh = final_outfit.meshes[i];
+                g.positions = final_outfit.positions[i];
+                const garment::GarmentStateCheck& c = final_outfit.checks[i];
+                g.drape = DrapeState{fs.usable() && c.max_penetration_m <= fs.drape.penetration_tolerance_m &&
+                                         c.max_seam_gap_m < fs.drape.seam_gap_tolerance_m && c.self_intersections == 0,
+                                     fs.drape.converged,
+                                     c.max_penetration_m,
+                                     c.max_seam_gap_m,
+                                     c.self_intersections,
+                                     DrapeState::Source::output,
+                                     options.final_edge_cm};
+            } else {
+                g.pattern = garment::make_pattern(g.sizing);
+            }
+            // The output drape dresses afresh and can fail (crumpled, caught, exploded) where
+            // the search's re-drapes of the same garment settled: `automatic` keeps the
+            // search's re-drape of the recovered sizing and material then, at its resolution.
+            const bool automatic = options.output_drape == OutputDrape::automatic && !g.drape.usable;
+            if (!fresh || automatic) {
+                try {
+                    const DrapedCandidate c = draper.drape(static_cast<int>(i), g.sizing, g.material, 0);
+                    if (!fresh || c.usable) {
+                        g.mesh = c.mesh;
+                        g.positions = c.positions;
+                        g.drape = DrapeState{c.usable,           c.converged,
+                                             c.penetration_max_m, c.seam_gap_max_m,
+                                             c.self_intersections, DrapeState::Source::search,
+                                             options.search_edge_cm};
+                    }
+                } catch (const InvalidInput& e) {
+                    // The search mesh refuses the recovered sizing (it was evaluated there, so
+                    // rarely): `automatic` keeps the output drape; `search` has none.
+                    if (!fresh)
+                        return finish(RecoverTermination::drape_failed,
+                                      "the search's re-drape of garment " + std::to_string(i) + ": " + e.what());
+                }
+            }
             g.mean_curvature_per_m = mean_curvature(g.mesh, g.positions);
-            const garment::GarmentStateCheck& c = final_outfit.checks[i];
-            g.drape.converged = fs.drape.converged;
-            g.drape.penetration_max_m = c.max_penetration_m;
-            g.drape.seam_gap_max_m = c.max_seam_gap_m;
-            g.drape.self_intersections = c.self_intersections;
-            g.drape.usable = fs.usable() && c.max_penetration_m <= fs.drape.penetration_tolerance_m &&
-                             c.max_seam_gap_m < fs.drape.seam_gap_tolerance_m && c.self_intersections == 0;
             g.nearest_fabric = nearest_fabric(g.material);
             if (g.bending_low <= 0) g.bending_low = g.bending_high = g.material.bending_scale;
         }
+        summary.seconds_final = since(ts);
+        OutfitView final_view(model, out.body_vertices, out.fit.camera, in.image_bgr.cols, in.image_bgr.rows);
         std::vector<const garment::GarmentMesh*> meshes;
         std::vector<const Eigen::MatrixX3d*> positions;
         std::vector<int> labels;

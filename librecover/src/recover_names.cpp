@@ -45,6 +45,22 @@ Quality quality_from_name(const std::string& name) {
     throw InvalidInput("unknown quality '" + name + "' (expected fast, default or fine)");
 }
 
+OutputDrape output_drape_from_name(const std::string& name) {
+    if (name == "auto") return OutputDrape::automatic;
+    if (name == "output") return OutputDrape::output;
+    if (name == "search") return OutputDrape::search;
+    throw InvalidInput("unknown output drape '" + name + "' (expected auto, output or search)");
+}
+
+std::string output_drape_name(OutputDrape d) {
+    switch (d) {
+        case OutputDrape::automatic: return "auto";
+        case OutputDrape::output: return "output";
+        case OutputDrape::search: return "search";
+    }
+    return "auto";
+}
+
 std::string quality_name(Quality q) {
     switch (q) {
         case Quality::fast: return "fast";

@@ -71,6 +71,9 @@ ReportContent recovery_report(const cv::Mat& photo, const RecoveryResult& r, con
         drape += " (penetration " + num(1000 * g.drape.penetration_max_m, 1) + " mm, seam gap " +
                  num(1000 * g.drape.seam_gap_max_m, 1) + " mm, " + std::to_string(g.drape.self_intersections) +
                  " self-intersections)";
+        if (g.drape.source == DrapeState::Source::search)
+            drape += "; the output drape was not usable: the search's re-drape at " + num(g.drape.edge_cm, 1) +
+                     " cm edges is shown";
         garments.rows.push_back({garment_choice_name(g.choice) + (g.supported ? "" : " (unsupported: " + g.unsupported_reason + ")"),
                                  g.class_name, sizing, num(g.silhouette_rms_px, 1), drape});
         material.rows.push_back({garment_choice_name(g.choice), g.base_fabric, num(g.material.bending_scale, 2),

@@ -133,4 +133,39 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     CHECK(inter / uni >= 0.75);
     CHECK(rg["drape"]["penetration_max_m"].get<double>() <= 0.001);
     CHECK(rg["drape"]["self_intersections"].get<int>() == 0);
+    CHECK(result["output_drape"] == "auto");
+    const std::string source = rg["drape"]["mesh"];
+    CHECK((source == "output" || source == "search"));
+    CHECK(rg["drape"]["edge_cm"].get<double>() == (source == "output" ? 5.0 : 8.0));
+
+    // The same recovery with the search's re-drapes as the result (no output drape): the
+    // search is the same run for run (a fixed seed, threads bit-identical to serial), so the
+    // sizing is exactly the first run's; the garment is its re-drape on the 8 cm search mesh.
+    const fs::path quick = dir / "quick";
+    const auto rs = run_drape("recover " + q(scene / "image_midday.png") + " --joints " + q(scene / "joints.json") +
+                              " --strokes " + q(scene / "strokes.png") +
+                              " --garment skirt --quality fast --particles 8 --generations 2 --output-drape search"
+                              " --out " + q(quick));
+    INFO(rs.out);
+    REQUIRE(rs.exit_code == 0);
+    const nlohmann::json qr = read_json(quick / "result.json");
+    const auto& qg = qr["garments"][0];
+    CHECK(qr["output_drape"] == "search");
+    CHECK(qg["sizing"] == rg["sizing"]);
+    CHECK(qg["material"]["bending_scale"] == rg["material"]["bending_scale"]);
+    CHECK(qg["drape"]["mesh"] == "search");
+    CHECK(qg["drape"]["edge_cm"].get<double>() == 8.0);
+    CHECK(qg["drape"]["usable"].get<bool>());
+    CHECK(qr["summary"]["seconds"]["final_drape"].get<double>() < result["summary"]["seconds"]["final_drape"].get<double>());
+    const cv::Mat qmask = cv::imread((quick / "mask.png").string(), cv::IMREAD_UNCHANGED);
+    REQUIRE(qmask.size() == labels.size());
+    const double qi = cv::countNonZero((qmask == 42) & (labels == 42));
+    const double qu = cv::countNonZero((qmask == 42) | (labels == 42));
+    INFO("mask IoU: output " << inter / uni << ", search " << qi / qu);
+    CHECK(qi / qu >= 0.75);
+
+    const auto bad = run_drape("recover " + q(scene / "image_midday.png") + " --joints " + q(scene / "joints.json") +
+                               " --output-drape best --out " + q(dir / "bad"));
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.out.find("unknown output drape 'best'") != std::string::npos);
 }

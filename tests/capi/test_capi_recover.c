@@ -171,14 +171,26 @@ int main(int argc, char** argv) {
     latency = cancelled_recovery(&in, &o, "sizing");
     CHECK(latency >= 0 && latency < 60.0);
 
-    /* 2. A finished recovery (the smallest search: this part tests the files, not the
-     *    estimate), its folder cancelled before the move, then written whole. */
+    /* 2. A finished recovery (the smallest search, and the search's re-drape as the result:
+     *    this part tests the files, not the estimate), its folder cancelled before the move,
+     *    then written whole. */
     o.estimate_material = 0;
     o.particles = 4;
     o.generations = 1;
+    o.output_drape = "best";
+    CHECK(drape_recover(NULL, &in, &o, NULL, &r) == DRAPE_ERROR_INVALID_ARGUMENT);
+    CHECK(r == NULL);
+    CHECK(strstr(drape_last_error_message(), "unknown output drape 'best'") != NULL);
+    o.output_drape = "search";
     st = drape_recover(NULL, &in, &o, NULL, &r);
     CHECK(st == DRAPE_OK || (st == DRAPE_ERROR_NO_CONVERGENCE && r != NULL));
     if (!r) return 1;
+    {
+        char* g = NULL;
+        CHECK(drape_recovery_garment_json(r, 0, &g) == DRAPE_OK);
+        CHECK(g && strstr(g, "\"mesh\": \"search\"") != NULL);  /* dump(2): "key": value */
+        drape_free(g);
+    }
     snprintf(folder, sizeof folder, "%s/result", argv[4]);
     CHECK(drape_recovery_write_folder(r, folder, NULL) == DRAPE_OK);  /* an earlier run's folder */
     CHECK(first_byte(folder, "result.json") == '{');

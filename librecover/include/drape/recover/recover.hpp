@@ -84,6 +84,21 @@ enum class MaterialTarget {
     /// scale whose P matches the photo's is kept (a grid search: P is piecewise constant).
     wrinkle_synthesis,
 };
+/// Which drape the garments of the result are (DrapeState::source).
+enum class OutputDrape {
+    /// The output drape (dress_outfit afresh at final_edge_cm, the outfit together); a
+    /// garment whose output drape is not usable, while the search's re-drape of its recovered
+    /// sizing and material is, keeps that re-drape at search_edge_cm.
+    automatic,
+    /// The output drape always, usable or not.
+    output,
+    /// The search's re-drapes only, at search_edge_cm: no output drape (quicker; a preview).
+    search,
+};
+/// "auto", "output" or "search". \throw drape::InvalidInput otherwise.
+OutputDrape output_drape_from_name(const std::string& name);
+std::string output_drape_name(OutputDrape d);
+
 /// "calibrated" or "synthesis". \throw drape::InvalidInput otherwise.
 MaterialTarget material_target_from_name(const std::string& name);
 std::string material_target_name(MaterialTarget t);
@@ -105,6 +120,8 @@ struct RecoverOptions {
     /// that pose (RecoveryResult::pose); the photo fit's pose stays in RecoveryResult::fit.
     /// [0, 180]; 180 = off (docs/recovery.md).
     double max_arm_elevation_degrees = 90.0;
+    /// Which drape the result's garments are (docs/recovery.md, step 7).
+    OutputDrape output_drape = OutputDrape::automatic;
     /// Estimate the material (false: keep the base fabric at bending ×1).
     bool estimate_material = true;
     /// The base fabric of the paper's material space (bending scale ×1…×100).
@@ -143,6 +160,13 @@ struct DrapeState {
     double penetration_max_m = 0;
     double seam_gap_max_m = 0;
     int self_intersections = 0;
+    /// Which drape the garment's mesh and positions are: the output drape (dressed afresh at
+    /// RecoverOptions::final_edge_cm, the outfit together), or, where that drape was not
+    /// usable and the search's own re-drape of the same sizing and material was, that
+    /// re-drape at search_edge_cm (on the body alone: crossings with the other garments are
+    /// not checked). `edge_cm` is the mesh's target edge.
+    enum class Source { output, search } source = Source::output;
+    double edge_cm = 0;
 };
 
 struct RecoveredGarment {
