@@ -12,6 +12,10 @@ namespace {
 constexpr double kKappa = 0.5523;           // cubic approximation of a quarter ellipse
 constexpr double kShortsInseamCm = 40.0;    // below this inseam there is no knee line
 constexpr double kKneeFraction = 0.55;      // knee line height / inseam, from the hem
+// Shorts: the back crotch drops at most this far below the front's (the classic drop of long
+// trousers is 2-3 cm, e.g. 2.7 cm at w2 = 100, inseam 78 cm).
+constexpr double kShortsMaxCrotchDropCm = 2.5;
+constexpr double kShortsMaxCrotchDropFraction = 0.15;  // of the inseam
 constexpr double kNominalWaistHeightCm = 105.0;
 constexpr double kNominalLegOffsetCm = 9.5;
 constexpr double kNominalHalfDepthCm = 12.0;
@@ -43,11 +47,25 @@ Panel leg_panel(const PantsSizing& g, bool back, double front_inseam_upper, LegE
     const double y_waist_centre = back ? inseam + g.h2 : g.h1;
     const double curve_height = (back ? 0.45 : 0.4) * (y_waist_centre - inseam);
     double y_crotch = inseam;
+    double x_hem_in = a;
     if (back) {  // the classic lowered back crotch: equal inseam lengths
         const double dx = x_crotch - k;
-        y_crotch = yk + std::sqrt(std::max(0.0, front_inseam_upper * front_inseam_upper - dx * dx));
+        const double L = front_inseam_upper;
+        y_crotch = yk + std::sqrt(std::max(0.0, L * L - dx * dx));
+        // Short legs (no knee line): the back's wider crotch extension can be further from the
+        // hem's inner corner than the whole front inseam is long, and lowering the crotch
+        // cannot match it (it would reach the hem). As shorts patterns do, the crotch drops
+        // at most kShortsMaxCrotchDrop and the back leg opening widens at the inseam instead
+        // (the back hem's inner corner moves out); continuous with the classic construction
+        // where the drop is within the bound.
+        const double drop = std::min(kShortsMaxCrotchDropCm, kShortsMaxCrotchDropFraction * inseam);
+        if (!knee && y_crotch < inseam - drop) {
+            y_crotch = inseam - drop;
+            x_hem_in = x_crotch - std::sqrt(std::max(0.0, L * L - y_crotch * y_crotch));
+        }
     }
-    const Eigen::Vector2d hem_side(-a, 0), hem_in(a, 0), knee_in(k, yk), knee_side(-k, yk);
+    const Eigen::Vector2d hem_side(-a, 0), hem_in(x_hem_in, 0), knee_in(knee ? k : x_hem_in, yk),
+        knee_side(-k, yk);
     const Eigen::Vector2d crotch(x_crotch, y_crotch), centre_low(x_centre, inseam + curve_height);
     const Eigen::Vector2d centre_waist(x_centre_waist, y_waist_centre), side_waist(x_side_waist, g.h1);
     const Eigen::Vector2d side_hip(x_side_hip, inseam);

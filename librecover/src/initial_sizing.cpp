@@ -94,10 +94,11 @@ garment::GarmentSizing initial_sizing(GarmentChoice choice, const vision::Garmen
         case garment::GarmentType::pants: {
             const double length = feature_cm(f.length_px, h, stature);
             if (choice == GarmentChoice::shorts) {
-                // At least a 12 cm inseam below the crotch depth, so that the front and back
-                // inseams of the pattern still match.
-                g.pants.h1 = std::max(std::isfinite(length) ? std::min(length, 60.0) : 45.0,
-                                      std::max(g.pants.h2, g.pants.h3) + 12.0);
+                // At least the template's 5 cm inseam below the crotch depth (hot pants; the
+                // pattern's short-shorts construction matches the inseams down to there).
+                const double h1_min = garment::PantsSizing::parameters()[4].min;  // h1's range
+                g.pants.h1 = std::max({std::isfinite(length) ? std::min(length, 60.0) : 45.0,
+                                       std::max(g.pants.h2, g.pants.h3) + 5.0, h1_min});
             } else {
                 set_if(g.pants.h1, length);
             }

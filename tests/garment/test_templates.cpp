@@ -95,6 +95,35 @@ TEST_CASE("pants: seams match and lengths follow <w1..w4, h1..h3>", "[garment][t
     CHECK(shorts.panels[0].edges.size() == p.panels[0].edges.size() - 2);
     CHECK(shorts.seams.size() == 10);
     CHECK(max_mismatch(shorts) < 1e-6);
+    // Hot pants (inseam 5-15 cm): the back's crotch extension lies further from the hem than
+    // the front inseam is long, so the back crotch drops at most 2.5 cm (15 % of the inseam)
+    // and the back leg opening widens at the inseam instead. Seams still match; every inseam
+    // from 5 to 40 cm makes a valid pattern; the back opening changes continuously.
+    for (const double h3 : {15.0, 21.8, 28.0}) {
+        double last_back_hem = -1;
+        for (double inseam = 5; inseam <= 40; inseam += 0.5) {
+            PantsSizing h = g;
+            h.h3 = h3;
+            h.h2 = h3 + 5;
+            h.h1 = h.h3 + inseam;
+            if (h.h1 < 30) continue;  // the parameter's range
+            INFO("h3 " << h3 << " cm, inseam " << inseam << " cm");
+            std::string why;
+            Pattern hp;
+            REQUIRE_NOTHROW(hp = make_pants(h));
+            CHECK(hp.is_valid(&why));
+            CHECK(max_mismatch(hp) < 1e-6);
+            // Edge 1 is the inseam (no knee): the back's crotch end lies at most 2.5 cm below
+            // the front's, and its hem is at least the front's.
+            const Edge& fi = hp.panels[0].edges[1];
+            const Edge& bi = hp.panels[3].edges[1];
+            CHECK(fi.end.y() - bi.end.y() <= std::min(2.5, 0.15 * inseam) + 1e-9);
+            CHECK(hp.panels[3].edges[0].length() >= hp.panels[0].edges[0].length() - 1e-9);
+            const double back_hem = hp.panels[3].edges[0].length();
+            if (last_back_hem > 0) CHECK(std::abs(back_hem - last_back_hem) < 1.5);
+            last_back_hem = back_hem;
+        }
+    }
     s.h3 = 48;  // inseam 2 cm
     CHECK(error_of([&] { make_pants(s); }).find("inseam h1 - h3 = 2") != std::string::npos);
     PantsSizing bad = g;
