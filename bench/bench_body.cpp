@@ -57,7 +57,11 @@ int main(int argc, char** argv) {
                 time_ms(std::max(1, reps / 4), [&] { export_glb(dir / "drape_bench.glb", model, body, pose); }));
     std::printf("%-40s %10.2f ms\n", "save_model (HDF5)",
                 time_ms(std::max(1, reps / 4), [&] { save_model(model, dir / "drape_bench.h5"); }));
-    std::printf("%-40s %10.2f ms\n", "load_model (HDF5)",
+    std::printf("%-40s %10.2f ms\n", "load_model (HDF5, isolated reader)",
                 time_ms(std::max(1, reps / 4), [&] { (void)load_model(dir / "drape_bench.h5"); }));
+    ModelLoadOptions in_process;
+    in_process.isolate = false;
+    std::printf("%-40s %10.2f ms\n", "load_model (HDF5, in process)",
+                time_ms(std::max(1, reps / 4), [&] { (void)load_model(dir / "drape_bench.h5", in_process); }));
     return 0;
 }

@@ -134,6 +134,27 @@ File::File(const std::filesystem::path& path, Mode mode) : path_(path), impl_(st
     impl_->file = Handle(id, H5Fclose);
 }
 
+File::File(const std::filesystem::path& name, const std::string& image) : path_(name), impl_(std::make_unique<Impl>()) {
+    const std::string p = name.string();
+    // The superblock's signature, at offset 0 or after a user block of 512, 1024, 2048, ...
+    // bytes (the HDF5 file format specification, "Format Signature").
+    static const char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    bool signed_image = false;
+    for (std::size_t at = 0; at + sizeof kSignature <= image.size() && !signed_image; at = at == 0 ? 512 : 2 * at)
+        signed_image = std::memcmp(image.data() + at, kSignature, sizeof kSignature) == 0;
+    if (!signed_image) throw IoError("cannot read '" + p + "': not an HDF5 file");
+    const Handle fapl = plist_handle(H5Pcreate(H5P_FILE_ACCESS));
+    // Core driver without a backing store: the image is read, the file never opened.
+    if (!fapl.valid() || H5Pset_fapl_core(fapl.get(), 1 << 20, 0) < 0 ||
+        H5Pset_file_image(fapl.get(), const_cast<char*>(image.data()), image.size()) < 0)
+        throw IoError("cannot read '" + p + "': the HDF5 library refused its bytes");
+    // The core driver refuses an image whose name exists on disk ("file already exists"):
+    // HDF5 gets a name that cannot exist; messages name `name`.
+    const hid_t id = H5Fopen("/nonexistent/drape-file-image.h5", H5F_ACC_RDONLY, fapl.get());
+    if (id < 0) throw IoError("cannot open HDF5 file '" + p + "'");
+    impl_->file = Handle(id, H5Fclose);
+}
+
 File::~File() = default;
 
 void File::close() {

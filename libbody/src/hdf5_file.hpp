@@ -36,6 +36,10 @@ class File {
 public:
     /// \throw drape::IoError naming `path` if it is missing, not HDF5, or cannot be created.
     File(const std::filesystem::path& path, Mode mode);
+    /// Read-only, from the file's bytes in memory (HDF5's core driver): what is parsed is
+    /// exactly `image`, whatever happens to the file meanwhile. `name` names it in messages.
+    /// \throw drape::IoError naming `name` if `image` has no HDF5 signature or cannot be opened.
+    File(const std::filesystem::path& name, const std::string& image);
     ~File();
     File(const File&) = delete;
     File& operator=(const File&) = delete;

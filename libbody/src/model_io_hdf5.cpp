@@ -7,6 +7,7 @@
 
 #include <drape/core/atomic_file.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/isolated.hpp>
 #include <drape/core/limits.hpp>
 
 #include <Eigen/SparseCore>
@@ -14,7 +15,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
+#include <limits>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -295,8 +299,9 @@ void save_model(const BodyModel& model, const std::filesystem::path& path) {
     });
 }
 
-BodyModel load_model(const std::filesystem::path& path, const ModelLoadOptions& options) {
-    h5::File f(path, h5::Mode::read_only);
+namespace {
+
+BodyModel parse_model(h5::File& f, const std::filesystem::path& path, const ModelLoadOptions& options) {
     f.allow_variable_length_strings(options.allow_variable_length_strings);
 
     if (!f.has_attribute("/", "format_name"))
@@ -369,6 +374,232 @@ BodyModel load_model(const std::filesystem::path& path, const ModelLoadOptions& 
     std::string why;
     if (!m.is_valid(&why))
         throw InvalidInput("file '" + path.string() + "': the model is inconsistent: " + why);
+    return m;
+}
+
+// The isolated reader's output: the parsed model as plain bytes (host byte order, one
+// process), decoded here as untrusted input (every size bounded, every index checked by
+// check_model after).
+class Encoder {
+public:
+    void u64(std::uint64_t v) { raw(&v, sizeof v); }
+    void i64(std::int64_t v) { raw(&v, sizeof v); }
+    void f64(double v) { raw(&v, sizeof v); }
+    void str(const std::string& v) {
+        u64(v.size());
+        raw(v.data(), v.size());
+    }
+    template <class M>
+    void matrix(const M& m) {
+        u64(static_cast<std::uint64_t>(m.rows()));
+        u64(static_cast<std::uint64_t>(m.cols()));
+        for (Eigen::Index c = 0; c < m.cols(); ++c)
+            for (Eigen::Index r = 0; r < m.rows(); ++r) {
+                if constexpr (std::is_integral_v<typename M::Scalar>) i64(m(r, c));
+                else f64(m(r, c));
+            }
+    }
+    void sparse(const Eigen::SparseMatrix<double>& m) {
+        u64(static_cast<std::uint64_t>(m.rows()));
+        u64(static_cast<std::uint64_t>(m.cols()));
+        u64(static_cast<std::uint64_t>(m.nonZeros()));
+        for (int k = 0; k < m.outerSize(); ++k)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it) {
+                i64(it.row());
+                i64(it.col());
+                f64(it.value());
+            }
+    }
+    std::string take() { return std::move(out_); }
+
+private:
+    void raw(const void* p, std::size_t n) { out_.append(static_cast<const char*>(p), n); }
+    std::string out_;
+};
+
+class Decoder {
+public:
+    Decoder(const std::string& in, const std::string& file) : in_(in), file_(file) {}
+    std::uint64_t u64() { return pod<std::uint64_t>(); }
+    std::int64_t i64() { return pod<std::int64_t>(); }
+    double f64() { return pod<double>(); }
+    std::string str() {
+        const std::uint64_t n = count(1);
+        std::string v = in_.substr(at_, n);
+        at_ += n;
+        return v;
+    }
+    template <class M>
+    void matrix(M& m) {
+        const std::uint64_t rows = u64(), cols = u64();
+        if (rows > std::uint64_t(limits::kMaxModelDatasetElements) || cols > std::uint64_t(limits::kMaxModelDatasetElements) ||
+            rows * cols > std::uint64_t(limits::kMaxModelDatasetElements) ||
+            rows * cols * 8 > in_.size() - at_ ||
+            (M::RowsAtCompileTime != Eigen::Dynamic && rows != std::uint64_t(M::RowsAtCompileTime)) ||
+            (M::ColsAtCompileTime != Eigen::Dynamic && cols != std::uint64_t(M::ColsAtCompileTime)))
+            bad();
+        m.resize(Eigen::Index(rows), Eigen::Index(cols));
+        for (Eigen::Index c = 0; c < m.cols(); ++c)
+            for (Eigen::Index r = 0; r < m.rows(); ++r) {
+                if constexpr (std::is_integral_v<typename M::Scalar>) {
+                    const std::int64_t v = i64();
+                    if (v < std::numeric_limits<typename M::Scalar>::min() || v > std::numeric_limits<typename M::Scalar>::max()) bad();
+                    m(r, c) = static_cast<typename M::Scalar>(v);
+                } else {
+                    m(r, c) = f64();
+                }
+            }
+    }
+    Eigen::SparseMatrix<double> sparse() {
+        const std::uint64_t rows = u64(), cols = u64(), nnz = u64();
+        if (rows > std::uint64_t(limits::kMaxModelDatasetElements) || cols > std::uint64_t(limits::kMaxModelDatasetElements) ||
+            nnz > std::uint64_t(limits::kMaxModelDatasetElements) || nnz * 24 > in_.size() - at_)
+            bad();
+        std::vector<Eigen::Triplet<double>> t;
+        t.reserve(nnz);
+        for (std::uint64_t k = 0; k < nnz; ++k) {
+            const std::int64_t r = i64(), c = i64();
+            const double v = f64();
+            if (r < 0 || c < 0 || std::uint64_t(r) >= rows || std::uint64_t(c) >= cols) bad();
+            t.emplace_back(int(r), int(c), v);
+        }
+        Eigen::SparseMatrix<double> m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+        m.setFromTriplets(t.begin(), t.end());
+        return m;
+    }
+    void finish() const {
+        if (at_ != in_.size()) bad();
+    }
+
+private:
+    template <class T>
+    T pod() {
+        if (in_.size() - at_ < sizeof(T)) bad();
+        T v;
+        std::memcpy(&v, in_.data() + at_, sizeof v);
+        at_ += sizeof v;
+        return v;
+    }
+    std::uint64_t count(std::uint64_t size_of) {
+        const std::uint64_t n = u64();
+        if (n > (in_.size() - at_) / size_of) bad();
+        return n;
+    }
+    [[noreturn]] void bad() const {
+        throw IoError("cannot read '" + file_ + "': the isolated reader's output is damaged (docs/hardening.md)");
+    }
+    const std::string& in_;
+    std::string file_;
+    std::size_t at_ = 0;
+};
+
+void encode(Encoder& e, const GaussianPrior& g) {
+    e.matrix(g.mean);
+    e.matrix(g.covariance);
+    e.matrix(g.min);
+    e.matrix(g.max);
+    e.i64(g.sample_count);
+}
+
+void decode(Decoder& d, GaussianPrior& g) {
+    d.matrix(g.mean);
+    d.matrix(g.covariance);
+    d.matrix(g.min);
+    d.matrix(g.max);
+    const std::int64_t n = d.i64();
+    g.sample_count = static_cast<int>(std::clamp<std::int64_t>(n, -1, std::numeric_limits<int>::max()));
+}
+
+std::string encode_model(const BodyModel& m) {
+    Encoder e;
+    e.str(m.name);
+    e.matrix(m.template_vertices);
+    e.matrix(m.faces);
+    e.matrix(m.shape_basis);
+    e.u64(m.shape_names.size());
+    for (const std::string& n : m.shape_names) e.str(n);
+    e.matrix(m.template_joints);
+    e.sparse(m.joint_regressor);
+    e.sparse(m.skin_weights);
+    for (const LandmarkField& lf : kLandmarkFields) e.i64(m.landmarks.*lf.member);
+    e.matrix(m.semantic_map.A);
+    e.matrix(m.semantic_map.b);
+    e.matrix(m.semantic_map.reference);
+    e.matrix(m.semantic_map.refinable);
+    encode(e, m.prior.female);
+    encode(e, m.prior.male);
+    e.f64(m.density_kg_m3);
+    return e.take();
+}
+
+BodyModel decode_model(const std::string& bytes, const std::filesystem::path& path) {
+    Decoder d(bytes, path.string());
+    BodyModel m;
+    m.name = d.str();
+    d.matrix(m.template_vertices);
+    d.matrix(m.faces);
+    d.matrix(m.shape_basis);
+    const std::uint64_t k = d.u64();
+    if (k > std::uint64_t(m.shape_basis.cols())) d.finish();  // more names than columns: damaged (throws)
+    m.shape_names.resize(k);
+    for (std::string& n : m.shape_names) n = d.str();
+    d.matrix(m.template_joints);
+    m.joint_regressor = d.sparse();
+    m.skin_weights = d.sparse();
+    for (const LandmarkField& lf : kLandmarkFields) {
+        const std::int64_t v = d.i64();
+        m.landmarks.*lf.member = static_cast<int>(std::clamp<std::int64_t>(v, -2, std::numeric_limits<int>::max()));
+    }
+    d.matrix(m.semantic_map.A);
+    d.matrix(m.semantic_map.b);
+    d.matrix(m.semantic_map.reference);
+    d.matrix(m.semantic_map.refinable);
+    decode(d, m.prior.female);
+    decode(d, m.prior.male);
+    m.density_kg_m3 = d.f64();
+    d.finish();
+    return m;
+}
+
+}  // namespace
+
+BodyModel load_model(const std::filesystem::path& path, const ModelLoadOptions& options) {
+    const std::string bytes = limits::read_file_capped(path, limits::kMaxModelFileBytes, "body model file");
+    if (!options.isolate) {
+        h5::File f(path, bytes);
+        return parse_model(f, path, options);
+    }
+    const core::IsolatedOutcome o = core::run_isolated(
+        [&] {
+            h5::File f(path, bytes);
+            return encode_model(parse_model(f, path, options));
+        },
+        options.isolation_timeout_s, std::size_t(2 * limits::kMaxModelFileBytes));
+    using K = core::IsolatedOutcome::Kind;
+    const std::string p = path.string();
+    switch (o.kind) {
+        case K::finished: break;
+        case K::invalid_input: throw InvalidInput(o.message);
+        case K::io_error: throw IoError(o.message);
+        case K::crashed:
+            throw IoError("cannot read '" + p + "': the HDF5 library crashed parsing it (" +
+                          (o.signal ? "signal " + std::to_string(o.signal) + ", " + strsignal(o.signal)
+                                    : o.message.empty() ? "exit code " + std::to_string(o.exit_code) : o.message) +
+                          ", in the isolated reader: this process is unharmed); the file is damaged "
+                          "(docs/hardening.md)");
+        case K::timed_out:
+            throw IoError("cannot read '" + p + "': the HDF5 library did not finish parsing it within " +
+                          std::to_string(options.isolation_timeout_s) + " s (killed; docs/hardening.md)");
+        case K::not_started:
+            throw IoError("cannot read '" + p + "': the isolated reader could not start: " + o.message);
+    }
+    // Decoded as untrusted bytes, then the same checks as a parse here.
+    BodyModel m = decode_model(o.output, path);
+    check_model(m, [&](const std::string& dataset, const std::string& problem) {
+        throw InvalidInput("file '" + p + "', dataset '" + dataset + "': " + problem);
+    });
+    std::string why;
+    if (!m.is_valid(&why)) throw InvalidInput("file '" + p + "': the model is inconsistent: " + why);
     return m;
 }
 

@@ -137,7 +137,9 @@ typedef struct drape_body_model_s* drape_body_model;
 /** Loads a body model file (HDF5, docs/body-model-format.md). Variable-length strings
  *  (h5py's default) are refused with DRAPE_ERROR_INVALID_ARGUMENT naming the dataset: libhdf5
  *  reads them from the file's global heap unchecked (docs/hardening.md); store fixed-length
- *  strings, as drape_body_model_save does. */
+ *  strings, as drape_body_model_save does. libhdf5 parses the file in a forked child
+ *  process (the isolated reader): a damaged file that crashes or hangs libhdf5 returns
+ *  DRAPE_ERROR_IO naming it, and the calling process is unharmed. */
 DRAPE_API drape_status drape_body_model_load(const char* path, drape_body_model* out_model);
 /** Writes a model to an HDF5 file (atomically). */
 DRAPE_API drape_status drape_body_model_save(drape_body_model model, const char* path);

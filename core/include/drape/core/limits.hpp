@@ -34,6 +34,9 @@ inline constexpr int kMaxJsonDepth = 64;
 inline constexpr std::int64_t kMaxMeshVertices = 2'000'000;
 /// A mesh file's size in bytes, checked before it is read.
 inline constexpr std::int64_t kMaxMeshFileBytes = 1'000'000'000;
+/// A body model file's size in bytes (HDF5), checked before it is read into memory: twice
+/// kMaxModelDatasetElements doubles.
+inline constexpr std::int64_t kMaxModelFileBytes = 1'024'000'000;
 /// Elements of any one dataset of a body model file (HDF5), checked on the declared extent
 /// before it is allocated: 64 million doubles are 512 MB, room for a 7000-vertex body with
 /// 3000 shape components.

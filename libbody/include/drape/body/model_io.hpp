@@ -30,11 +30,22 @@ struct ModelLoadOptions {
     /// process (docs/hardening.md). Off: a file holding them is refused, naming the
     /// dataset, before libhdf5 reads them. Turn on only for files you trust.
     bool allow_variable_length_strings = false;
+    /// Parse the file first in a child process (core::run_isolated), and only if that child
+    /// finished cleanly parse it again here. libhdf5 1.10 has open crashes on damaged files
+    /// (a heap overflow in its object-header parser, found by fuzzing: docs/hardening.md);
+    /// isolated, such a file is an IoError, not a crash of the host. Costs one fork and a
+    /// second parse (about 2x the load time). Off only for files you trust.
+    bool isolate = true;
+    /// With `isolate`: the child's time limit, seconds (a parse that hangs is killed).
+    double isolation_timeout_s = 60.0;
 };
 
 /// Reads a model written by save_model or converted by a user (docs/body-model-format.md).
 /// Never prints HDF5 diagnostics; every problem is reported by the exception.
-/// \throw drape::IoError naming the path if the file is missing, unreadable or not HDF5;
+/// The file is read into memory once (at most limits::kMaxModelFileBytes) and parsed from
+/// there, so both parses see the same bytes.
+/// \throw drape::IoError naming the path if the file is missing, unreadable or not HDF5, or
+///        if the HDF5 library crashed or hung parsing it in the isolated child;
 ///        drape::InvalidInput naming the file and dataset if its content is inconsistent
 ///        (wrong shape, bad indices, NaN, different skeleton, weights not summing to 1,
 ///        variable-length strings not allowed by `options`, ...).
