@@ -6,6 +6,7 @@
 #include "hdf5_file.hpp"
 
 #include <drape/core/atomic_file.hpp>
+#include <drape/core/byte_codec.hpp>
 #include <drape/core/errors.hpp>
 #include <drape/core/isolated.hpp>
 #include <drape/core/limits.hpp>
@@ -377,121 +378,10 @@ BodyModel parse_model(h5::File& f, const std::filesystem::path& path, const Mode
     return m;
 }
 
-// The isolated reader's output: the parsed model as plain bytes (host byte order, one
-// process), decoded here as untrusted input (every size bounded, every index checked by
-// check_model after).
-class Encoder {
-public:
-    void u64(std::uint64_t v) { raw(&v, sizeof v); }
-    void i64(std::int64_t v) { raw(&v, sizeof v); }
-    void f64(double v) { raw(&v, sizeof v); }
-    void str(const std::string& v) {
-        u64(v.size());
-        raw(v.data(), v.size());
-    }
-    template <class M>
-    void matrix(const M& m) {
-        u64(static_cast<std::uint64_t>(m.rows()));
-        u64(static_cast<std::uint64_t>(m.cols()));
-        for (Eigen::Index c = 0; c < m.cols(); ++c)
-            for (Eigen::Index r = 0; r < m.rows(); ++r) {
-                if constexpr (std::is_integral_v<typename M::Scalar>) i64(m(r, c));
-                else f64(m(r, c));
-            }
-    }
-    void sparse(const Eigen::SparseMatrix<double>& m) {
-        u64(static_cast<std::uint64_t>(m.rows()));
-        u64(static_cast<std::uint64_t>(m.cols()));
-        u64(static_cast<std::uint64_t>(m.nonZeros()));
-        for (int k = 0; k < m.outerSize(); ++k)
-            for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it) {
-                i64(it.row());
-                i64(it.col());
-                f64(it.value());
-            }
-    }
-    std::string take() { return std::move(out_); }
-
-private:
-    void raw(const void* p, std::size_t n) { out_.append(static_cast<const char*>(p), n); }
-    std::string out_;
-};
-
-class Decoder {
-public:
-    Decoder(const std::string& in, const std::string& file) : in_(in), file_(file) {}
-    std::uint64_t u64() { return pod<std::uint64_t>(); }
-    std::int64_t i64() { return pod<std::int64_t>(); }
-    double f64() { return pod<double>(); }
-    std::string str() {
-        const std::uint64_t n = count(1);
-        std::string v = in_.substr(at_, n);
-        at_ += n;
-        return v;
-    }
-    template <class M>
-    void matrix(M& m) {
-        const std::uint64_t rows = u64(), cols = u64();
-        if (rows > std::uint64_t(limits::kMaxModelDatasetElements) || cols > std::uint64_t(limits::kMaxModelDatasetElements) ||
-            rows * cols > std::uint64_t(limits::kMaxModelDatasetElements) ||
-            rows * cols * 8 > in_.size() - at_ ||
-            (M::RowsAtCompileTime != Eigen::Dynamic && rows != std::uint64_t(M::RowsAtCompileTime)) ||
-            (M::ColsAtCompileTime != Eigen::Dynamic && cols != std::uint64_t(M::ColsAtCompileTime)))
-            bad();
-        m.resize(Eigen::Index(rows), Eigen::Index(cols));
-        for (Eigen::Index c = 0; c < m.cols(); ++c)
-            for (Eigen::Index r = 0; r < m.rows(); ++r) {
-                if constexpr (std::is_integral_v<typename M::Scalar>) {
-                    const std::int64_t v = i64();
-                    if (v < std::numeric_limits<typename M::Scalar>::min() || v > std::numeric_limits<typename M::Scalar>::max()) bad();
-                    m(r, c) = static_cast<typename M::Scalar>(v);
-                } else {
-                    m(r, c) = f64();
-                }
-            }
-    }
-    Eigen::SparseMatrix<double> sparse() {
-        const std::uint64_t rows = u64(), cols = u64(), nnz = u64();
-        if (rows > std::uint64_t(limits::kMaxModelDatasetElements) || cols > std::uint64_t(limits::kMaxModelDatasetElements) ||
-            nnz > std::uint64_t(limits::kMaxModelDatasetElements) || nnz * 24 > in_.size() - at_)
-            bad();
-        std::vector<Eigen::Triplet<double>> t;
-        t.reserve(nnz);
-        for (std::uint64_t k = 0; k < nnz; ++k) {
-            const std::int64_t r = i64(), c = i64();
-            const double v = f64();
-            if (r < 0 || c < 0 || std::uint64_t(r) >= rows || std::uint64_t(c) >= cols) bad();
-            t.emplace_back(int(r), int(c), v);
-        }
-        Eigen::SparseMatrix<double> m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-        m.setFromTriplets(t.begin(), t.end());
-        return m;
-    }
-    void finish() const {
-        if (at_ != in_.size()) bad();
-    }
-
-private:
-    template <class T>
-    T pod() {
-        if (in_.size() - at_ < sizeof(T)) bad();
-        T v;
-        std::memcpy(&v, in_.data() + at_, sizeof v);
-        at_ += sizeof v;
-        return v;
-    }
-    std::uint64_t count(std::uint64_t size_of) {
-        const std::uint64_t n = u64();
-        if (n > (in_.size() - at_) / size_of) bad();
-        return n;
-    }
-    [[noreturn]] void bad() const {
-        throw IoError("cannot read '" + file_ + "': the isolated reader's output is damaged (docs/hardening.md)");
-    }
-    const std::string& in_;
-    std::string file_;
-    std::size_t at_ = 0;
-};
+// The isolated reader's output: the parsed model as plain bytes (core::ByteEncoder), decoded
+// here as untrusted input (every size bounded, every index checked by check_model after).
+using Encoder = core::ByteEncoder;
+using Decoder = core::ByteDecoder;
 
 void encode(Encoder& e, const GaussianPrior& g) {
     e.matrix(g.mean);
@@ -533,14 +423,15 @@ std::string encode_model(const BodyModel& m) {
 }
 
 BodyModel decode_model(const std::string& bytes, const std::filesystem::path& path) {
-    Decoder d(bytes, path.string());
+    Decoder d(bytes, "cannot read '" + path.string() + "': the isolated reader's output is damaged (docs/hardening.md)",
+              std::uint64_t(limits::kMaxModelDatasetElements));
     BodyModel m;
     m.name = d.str();
     d.matrix(m.template_vertices);
     d.matrix(m.faces);
     d.matrix(m.shape_basis);
     const std::uint64_t k = d.u64();
-    if (k > std::uint64_t(m.shape_basis.cols())) d.finish();  // more names than columns: damaged (throws)
+    if (k > std::uint64_t(m.shape_basis.cols())) d.fail();  // more names than columns
     m.shape_names.resize(k);
     for (std::string& n : m.shape_names) n = d.str();
     d.matrix(m.template_joints);

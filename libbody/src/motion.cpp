@@ -1,7 +1,9 @@
 // Motion: resampling, the designed walk cycle, and BVH retargeting (assimp reads the file).
 #include <drape/body/motion.hpp>
 
+#include <drape/core/byte_codec.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/isolated.hpp>
 
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
@@ -198,11 +200,9 @@ std::string joined(const std::vector<std::string>& names, std::size_t limit) {
     return os.str();
 }
 
-}  // namespace
 
-Motion load_bvh_motion(const std::filesystem::path& path, const Eigen::Matrix<double, kJointCount, 3>& rest_joints,
-                       const BvhJointMap& map, BvhRetargetSummary* summary) {
-    require(rest_joints.allFinite(), "load_bvh_motion: the rest joints are not finite");
+Motion retarget_bvh(const std::filesystem::path& path, const Eigen::Matrix<double, kJointCount, 3>& rest_joints,
+                    const BvhJointMap& map, BvhRetargetSummary* summary) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw IoError("cannot read BVH file '" + path.string() + "': no such file");
@@ -371,6 +371,91 @@ Motion load_bvh_motion(const std::filesystem::path& path, const Eigen::Matrix<do
         summary->root_scale = scale;
     }
     return out;
+}
+
+// The isolated child's output: the motion and the summary as plain bytes.
+std::string encode_bvh(const Motion& m, const BvhRetargetSummary& s) {
+    core::ByteEncoder e;
+    e.f64(m.fps);
+    e.u64(m.frames.size());
+    for (const Pose& p : m.frames) {
+        e.matrix(p.translation);
+        e.matrix(p.rotations);
+    }
+    e.i64(s.file_joints);
+    e.i64(s.file_frames);
+    e.f64(s.file_fps);
+    e.i64(s.mapped_joints);
+    for (const std::string& name : s.source) e.str(name);
+    e.f64(s.root_scale);
+    return e.take();
+}
+
+Motion decode_bvh(const std::string& bytes, const std::filesystem::path& path, BvhRetargetSummary& s) {
+    constexpr std::uint64_t kMaxFrames = 10'000'000;
+    core::ByteDecoder d(bytes, "cannot read BVH file '" + path.string() + "': the isolated reader's output is damaged",
+                        kMaxFrames);
+    Motion m;
+    m.fps = d.f64();
+    const std::uint64_t n = d.u64();
+    if (n > kMaxFrames || n > bytes.size() / (8 * (3 + 3 * kJointCount))) d.fail();
+    m.frames.resize(n);
+    for (Pose& p : m.frames) {
+        d.matrix(p.translation);
+        d.matrix(p.rotations);
+    }
+    const auto small = [&](std::int64_t v) { return static_cast<int>(std::clamp<std::int64_t>(v, -1, 1'000'000'000)); };
+    s.file_joints = small(d.i64());
+    s.file_frames = small(d.i64());
+    s.file_fps = d.f64();
+    s.mapped_joints = small(d.i64());
+    for (std::string& name : s.source) name = d.str();
+    s.root_scale = d.f64();
+    d.finish();
+    return m;
+}
+
+}  // namespace
+
+Motion load_bvh_motion(const std::filesystem::path& path, const Eigen::Matrix<double, kJointCount, 3>& rest_joints,
+                       const BvhJointMap& map, BvhRetargetSummary* summary, const BvhLoadOptions& options) {
+    require(rest_joints.allFinite(), "load_bvh_motion: the rest joints are not finite");
+    require(options.isolation_timeout_s > 0 && std::isfinite(options.isolation_timeout_s),
+            "load_bvh_motion: isolation_timeout_s = ", options.isolation_timeout_s, " (need > 0)");
+    if (!options.isolate) return retarget_bvh(path, rest_joints, map, summary);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw IoError("cannot read BVH file '" + path.string() + "': no such file");
+    const core::IsolatedOutcome o = core::run_isolated(
+        [&] {
+            BvhRetargetSummary s;
+            const Motion m = retarget_bvh(path, rest_joints, map, &s);
+            return encode_bvh(m, s);
+        },
+        options.isolation_timeout_s, std::size_t(1) << 31);
+    using K = core::IsolatedOutcome::Kind;
+    const std::string p = path.string();
+    switch (o.kind) {
+        case K::finished: break;
+        case K::invalid_input: throw InvalidInput(o.message);
+        case K::io_error: throw IoError(o.message);
+        case K::crashed:
+            throw IoError("cannot read BVH file '" + p + "': the BVH importer crashed on it (" +
+                          (o.signal ? "signal " + std::to_string(o.signal) : "exit code " + std::to_string(o.exit_code)) +
+                          ", in the isolated reader: this process is unharmed)");
+        case K::timed_out:
+            throw IoError("cannot read BVH file '" + p + "': the BVH importer did not finish within " +
+                          std::to_string(options.isolation_timeout_s) + " s (killed)");
+        case K::not_started:
+            throw IoError("cannot read BVH file '" + p + "': the isolated reader could not start: " + o.message);
+    }
+    BvhRetargetSummary s;
+    Motion m = decode_bvh(o.output, path, s);
+    std::string why;
+    if (!m.is_valid(&why))
+        throw IoError("cannot read BVH file '" + p + "': the isolated reader returned an invalid motion: " + why);
+    if (summary) *summary = s;
+    return m;
 }
 
 }  // namespace drape::body

@@ -296,3 +296,35 @@ TEST_CASE("motion: resampling interpolates between frames and holds the last pos
     Motion empty;
     CHECK_THROWS_AS(resample_motion(empty, 30), InvalidInput);
 }
+
+// load_bvh_motion parses in a forked child by default (assimp 5.2 leaks on malformed files:
+// docs/hardening.md): the motion that comes back is bit for bit the in-process one, and the
+// child's errors arrive with their messages.
+TEST_CASE("bvh: the isolated reader gives the in-process motion and errors", "[body][motion]") {
+    const TempFile file("iso.bvh", small_bvh());
+    BvhLoadOptions here;
+    here.isolate = false;
+    BvhRetargetSummary si, sh;
+    const Motion isolated = load_bvh_motion(file.path, rest_joints(), BvhJointMap::standard(), &si);
+    const Motion in_process = load_bvh_motion(file.path, rest_joints(), BvhJointMap::standard(), &sh, here);
+    REQUIRE(isolated.frames.size() == in_process.frames.size());
+    CHECK(isolated.fps == in_process.fps);
+    for (std::size_t k = 0; k < isolated.frames.size(); ++k) {
+        CHECK(isolated.frames[k].translation == in_process.frames[k].translation);
+        CHECK(isolated.frames[k].rotations == in_process.frames[k].rotations);
+    }
+    CHECK(si.source == sh.source);
+    CHECK(si.file_joints == sh.file_joints);
+    CHECK(si.file_frames == sh.file_frames);
+    CHECK(si.root_scale == sh.root_scale);
+    const TempFile garbage("garbage_iso.bvh", "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n");
+    CHECK_THROWS_WITH(load_bvh_motion(garbage.path, rest_joints()),
+                      Catch::Contains("garbage_iso.bvh") && Catch::Contains("does not parse"));
+    BvhJointMap map = BvhJointMap::standard();
+    map.candidates[std::size_t(index(Joint::left_knee))] = {"LeftShin"};
+    CHECK_THROWS_AS(load_bvh_motion(file.path, rest_joints(), map), InvalidInput);
+    BvhLoadOptions bad;
+    bad.isolation_timeout_s = 0;
+    CHECK_THROWS_WITH(load_bvh_motion(file.path, rest_joints(), BvhJointMap::standard(), nullptr, bad),
+                      Catch::Contains("isolation_timeout_s"));
+}

@@ -85,6 +85,16 @@ struct BvhRetargetSummary {
     double root_scale = 0;         ///< our leg length / the file's (root motion is scaled by it)
 };
 
+struct BvhLoadOptions {
+    /// Parse and retarget in a forked child process (core::run_isolated): only the motion
+    /// comes back, decoded and checked as untrusted bytes. assimp 5.2's BVH importer leaks a
+    /// node on every malformed hierarchy (docs/hardening.md): isolated, the leak (and any
+    /// crash) stays in the child, so a service reading users' files does not grow. Off: in
+    /// this process (the fuzzer, for coverage of the retargeting).
+    bool isolate = true;
+    double isolation_timeout_s = 60.0;  ///< with `isolate`: the child is killed after this
+};
+
 /// Reads a BVH motion through assimp and retargets it (docs/animation.md, "Joint map"):
 /// each mapped joint's world orientation follows its BVH joint's, composed with the rotation
 /// that takes our rest bone direction onto the file's rest bone direction (our rest is an
@@ -94,7 +104,9 @@ struct BvhRetargetSummary {
 /// \throw drape::IoError if the file cannot be read or does not parse as BVH (assimp's
 ///        reason); drape::InvalidInput if it has no animation, or the joint map does not fit
 ///        (naming the joint, the candidate names and the file's joints).
+///        IoError also if the isolated child crashed or hung on it.
 Motion load_bvh_motion(const std::filesystem::path& path, const Eigen::Matrix<double, kJointCount, 3>& rest_joints,
-                       const BvhJointMap& map = BvhJointMap::standard(), BvhRetargetSummary* summary = nullptr);
+                       const BvhJointMap& map = BvhJointMap::standard(), BvhRetargetSummary* summary = nullptr,
+                       const BvhLoadOptions& options = {});
 
 }  // namespace drape::body
