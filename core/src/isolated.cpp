@@ -155,4 +155,26 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work, double ti
     return out;
 }
 
+void throw_unless_finished(const IsolatedOutcome& o, const std::string& subject, const std::string& library,
+                           double timeout_s) {
+    using K = IsolatedOutcome::Kind;
+    switch (o.kind) {
+        case K::finished: return;
+        case K::invalid_input: throw InvalidInput(o.message);
+        case K::io_error: throw IoError(o.message);
+        case K::crashed: {
+            const std::string how = o.signal ? "signal " + std::to_string(o.signal) + ", " + ::strsignal(o.signal)
+                                    : o.message.empty() ? "exit code " + std::to_string(o.exit_code)
+                                                        : o.message;
+            throw IoError(subject + ": " + library + " crashed parsing it (" + how +
+                          ", in the isolated reader: this process is unharmed); the file is damaged "
+                          "(docs/hardening.md)");
+        }
+        case K::timed_out:
+            throw IoError(subject + ": " + library + " did not finish parsing it within " + std::to_string(timeout_s) +
+                          " s (killed; docs/hardening.md)");
+        case K::not_started: throw IoError(subject + ": the isolated reader could not start: " + o.message);
+    }
+}
+
 }  // namespace drape::core

@@ -466,24 +466,8 @@ BodyModel load_model(const std::filesystem::path& path, const ModelLoadOptions& 
             return encode_model(parse_model(f, path, options));
         },
         options.isolation_timeout_s, std::size_t(2 * limits::kMaxModelFileBytes));
-    using K = core::IsolatedOutcome::Kind;
     const std::string p = path.string();
-    switch (o.kind) {
-        case K::finished: break;
-        case K::invalid_input: throw InvalidInput(o.message);
-        case K::io_error: throw IoError(o.message);
-        case K::crashed:
-            throw IoError("cannot read '" + p + "': the HDF5 library crashed parsing it (" +
-                          (o.signal ? "signal " + std::to_string(o.signal) + ", " + strsignal(o.signal)
-                                    : o.message.empty() ? "exit code " + std::to_string(o.exit_code) : o.message) +
-                          ", in the isolated reader: this process is unharmed); the file is damaged "
-                          "(docs/hardening.md)");
-        case K::timed_out:
-            throw IoError("cannot read '" + p + "': the HDF5 library did not finish parsing it within " +
-                          std::to_string(options.isolation_timeout_s) + " s (killed; docs/hardening.md)");
-        case K::not_started:
-            throw IoError("cannot read '" + p + "': the isolated reader could not start: " + o.message);
-    }
+    core::throw_unless_finished(o, "cannot read '" + p + "'", "the HDF5 library", options.isolation_timeout_s);
     // Decoded as untrusted bytes, then the same checks as a parse here.
     BodyModel m = decode_model(o.output, path);
     check_model(m, [&](const std::string& dataset, const std::string& problem) {

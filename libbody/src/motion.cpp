@@ -433,22 +433,9 @@ Motion load_bvh_motion(const std::filesystem::path& path, const Eigen::Matrix<do
             return encode_bvh(m, s);
         },
         options.isolation_timeout_s, std::size_t(1) << 31);
-    using K = core::IsolatedOutcome::Kind;
     const std::string p = path.string();
-    switch (o.kind) {
-        case K::finished: break;
-        case K::invalid_input: throw InvalidInput(o.message);
-        case K::io_error: throw IoError(o.message);
-        case K::crashed:
-            throw IoError("cannot read BVH file '" + p + "': the BVH importer crashed on it (" +
-                          (o.signal ? "signal " + std::to_string(o.signal) : "exit code " + std::to_string(o.exit_code)) +
-                          ", in the isolated reader: this process is unharmed)");
-        case K::timed_out:
-            throw IoError("cannot read BVH file '" + p + "': the BVH importer did not finish within " +
-                          std::to_string(options.isolation_timeout_s) + " s (killed)");
-        case K::not_started:
-            throw IoError("cannot read BVH file '" + p + "': the isolated reader could not start: " + o.message);
-    }
+    core::throw_unless_finished(o, "cannot read BVH file '" + p + "'", "the BVH importer (assimp)",
+                                options.isolation_timeout_s);
     BvhRetargetSummary s;
     Motion m = decode_bvh(o.output, path, s);
     std::string why;

@@ -42,6 +42,9 @@ TEST_CASE("isolated work: its bytes back, or its exception, crash or hang as an 
             30, 0);
         CHECK(o.kind == IsolatedOutcome::Kind::crashed);
         CHECK(o.signal == SIGSEGV);
+        CHECK_THROWS_WITH(drape::core::throw_unless_finished(o, "cannot read 'x.h5'", "the parser", 30),
+                          Catch::Contains("cannot read 'x.h5': the parser crashed") &&
+                              Catch::Contains("signal 11") && Catch::Contains("this process is unharmed"));
     }
     SECTION("a hang: killed at the limit") {
         const IsolatedOutcome o = run_isolated(

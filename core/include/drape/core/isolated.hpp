@@ -36,4 +36,12 @@ struct IsolatedOutcome {
 IsolatedOutcome run_isolated(const std::function<std::string()>& work, double timeout_s,
                              std::size_t max_output_bytes);
 
+/// Turns an outcome other than `finished` into the caller's error: the child's InvalidInput
+/// or IoError as thrown there, else an IoError "<subject>: <library> crashed parsing it
+/// (signal N, in the isolated reader: this process is unharmed)" (or did not finish within
+/// `timeout_s` s, or the reader could not start). `subject` names the file, e.g. "cannot
+/// read 'x.h5'"; `library` the parser, e.g. "the HDF5 library". Returns on `finished`.
+void throw_unless_finished(const IsolatedOutcome& outcome, const std::string& subject, const std::string& library,
+                           double timeout_s);
+
 }  // namespace drape::core
