@@ -80,9 +80,9 @@ void add_recover_flags(CLI::App* cmd, RecoverFlags& f) {
                     "upper arms raised more than this many degrees above hanging are lowered to it before draping "
                     "(default 90; 180 = off; docs/recovery.md)");
     cmd->add_option("--output-drape", f.output_drape,
-                    "auto (default: the output drape at the output resolution, or the search's re-drape where only "
-                    "that one is usable) | output (always the output drape) | search (the search's re-drapes only, "
-                    "quicker; docs/recovery.md)");
+                    "output (default: the output drape at the output resolution, usable or not) | auto (the search's "
+                    "re-drape where only that one is usable) | search (the search's re-drapes only, quicker; "
+                    "docs/recovery.md)");
     cmd->add_flag("--joint-pose", f.joint_pose,
                   "after the sizing/material rounds, search the pose of the joints under each garment together with "
                   "the material (paper Algorithm 2; off by default, docs/recovery.md)");

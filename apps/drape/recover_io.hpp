@@ -27,7 +27,7 @@ struct RecoverFlags {
     bool no_material = false;
     bool joint_pose = false;
     std::string material_target = "calibrated";
-    std::string output_drape = "auto";  // auto | output | search
+    std::string output_drape = "output";  // output | auto | search
     std::optional<double> max_arm_elevation;
 };
 

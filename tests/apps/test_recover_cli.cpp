@@ -133,10 +133,9 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     CHECK(inter / uni >= 0.75);
     CHECK(rg["drape"]["penetration_max_m"].get<double>() <= 0.001);
     CHECK(rg["drape"]["self_intersections"].get<int>() == 0);
-    CHECK(result["output_drape"] == "auto");
-    const std::string source = rg["drape"]["mesh"];
-    CHECK((source == "output" || source == "search"));
-    CHECK(rg["drape"]["edge_cm"].get<double>() == (source == "output" ? 5.0 : 8.0));
+    CHECK(result["output_drape"] == "output");
+    CHECK(rg["drape"]["mesh"] == "output");
+    CHECK(rg["drape"]["edge_cm"].get<double>() == 5.0);
 
     // The same recovery with the search's re-drapes as the result (no output drape): the
     // search is the same run for run (a fixed seed, threads bit-identical to serial), so the

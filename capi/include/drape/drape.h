@@ -492,9 +492,9 @@ typedef struct drape_recover_options {
     int32_t generations;        /* per sizing search; 0 = by quality */
     int32_t rounds;             /* sizing/material rounds at most; 0 = by quality */
     int32_t estimate_material;  /* 1 (default); 0 keeps the base fabric at bending x1 */
-    const char* output_drape;   /* which drape the garments are: "auto" (NULL: the output drape,
-                                   or the search's re-drape where only that one is usable),
-                                   "output" or "search" (docs/recovery.md, step 7); a caller
+    const char* output_drape;   /* which drape the garments are: "output" (NULL: the output
+                                   drape, usable or not), "auto" (the search's re-drape where
+                                   only that one is usable) or "search" (docs/recovery.md, step 7); a caller
                                    whose struct_size ends before it gets NULL */
 } drape_recover_options;
 DRAPE_API drape_status drape_recover_options_init(drape_recover_options* options);
