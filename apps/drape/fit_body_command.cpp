@@ -37,6 +37,10 @@ struct FitArgs {
     std::string model;
     int threads = 2;
     bool no_shape = false;
+    std::optional<double> posture_weight;
+    std::optional<double> lean_weight;
+    std::optional<double> skin_weight;
+    std::string image_joints = "hand-marked";
 };
 
 void run_fit_body(const FitArgs& args) {
@@ -49,6 +53,13 @@ void run_fit_body(const FitArgs& args) {
     body::FitOptions options;
     options.threads = args.threads;
     options.fit_shape = !args.no_shape;
+    if (args.posture_weight) options.posture_weight = *args.posture_weight;
+    if (args.lean_weight) options.lean_weight = *args.lean_weight;
+    if (args.skin_weight) options.skin_weight = *args.skin_weight;
+    if (args.image_joints == "model")
+        options.image_joints = body::ImageJointOffsets::none();
+    else if (args.image_joints != "hand-marked")
+        throw InvalidInput("--image-joints must be hand-marked or model, got '" + args.image_joints + "'");
     if (args.focal_px) {
         options.camera = body::CameraModel::pinhole;
         options.focal_px = *args.focal_px;
@@ -107,6 +118,16 @@ void add_fit_body_command(CLI::App& app) {
     cmd->add_option("--out", args->out, "output folder (created if absent)")->required();
     cmd->add_option("--model", args->model, "body model HDF5 file (default: built-in mannequin)");
     cmd->add_option("--threads", args->threads, "solver threads (default 2)");
+    cmd->add_option("--posture-weight", args->posture_weight,
+                    "weight of the posture prior that keeps the trunk and legs from bending "
+                    "towards or away from the camera (default 100; 0 = off)");
+    cmd->add_option("--lean-weight", args->lean_weight,
+                    "weight of the prior that keeps the whole body from leaning forwards, backwards "
+                    "or sideways (default 1000; 0 = off)");
+    cmd->add_option("--skin-weight", args->skin_weight, "weight of the skin term (default 2)");
+    cmd->add_option("--image-joints", args->image_joints,
+                    "which body points the joints mark: hand-marked (default: the convention of "
+                    "hand-marked fashion photos, docs/body-fitting.md) | model (the model's joints)");
     cmd->add_flag("--no-shape", args->no_shape, "keep the prior's shape, fit pose and camera only");
     cmd->callback([args] { run_fit_body(*args); });
 }

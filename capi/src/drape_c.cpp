@@ -248,7 +248,8 @@ struct StructTraits<drape_fit_options> {
     static constexpr const char* name = "drape_fit_options";
     static auto fields() {
         using S = drape_fit_options;
-        return std::make_tuple(&S::focal_px, &S::threads, &S::fit_shape);
+        return std::make_tuple(&S::focal_px, &S::threads, &S::fit_shape, &S::posture_weight, &S::lean_weight,
+                               &S::image_joints);
     }
     static drape_fit_options defaults() {
         drape_fit_options d{};
@@ -256,6 +257,10 @@ struct StructTraits<drape_fit_options> {
         d.focal_px = 0;
         d.threads = 2;
         d.fit_shape = 1;
+        const drape::body::FitOptions fo;
+        d.posture_weight = fo.posture_weight;
+        d.lean_weight = fo.lean_weight;
+        d.image_joints = DRAPE_IMAGE_JOINTS_HAND_MARKED;
         return d;
     }
 };
@@ -526,6 +531,13 @@ drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, con
         db::FitOptions fo;
         fo.threads = opt.threads;
         fo.fit_shape = opt.fit_shape != 0;
+        fo.posture_weight = opt.posture_weight;
+        fo.lean_weight = opt.lean_weight;
+        if (opt.image_joints == DRAPE_IMAGE_JOINTS_MODEL)
+            fo.image_joints = db::ImageJointOffsets::none();
+        else if (opt.image_joints != DRAPE_IMAGE_JOINTS_HAND_MARKED)
+            throw drape::InvalidInput("options->image_joints must be DRAPE_IMAGE_JOINTS_HAND_MARKED (0) or "
+                                      "DRAPE_IMAGE_JOINTS_MODEL (1), got " + std::to_string(opt.image_joints));
         if (opt.focal_px != 0) {
             fo.camera = db::CameraModel::pinhole;
             fo.focal_px = opt.focal_px;

@@ -82,7 +82,10 @@ nlohmann::json body_fit_json(const std::string& image, const BodyFitFiles& files
                 {"mean_joint_error_px", summary.mean_joint_error_px},
                 {"person_height_px", quality.person_height_px},
                 {"mean_joint_error_percent", quality.mean_joint_error_percent},
-                {"person_iou", quality.person_iou}};
+                {"person_iou", quality.person_iou},
+                {"trunk_out_of_plane_deg", quality.trunk_out_of_plane_deg},
+                {"leg_out_of_plane_deg", quality.leg_out_of_plane_deg},
+                {"knee_bend_deg", quality.knee_bend_deg}};
     if (quality.skin_coverage >= 0) j["fit"]["skin_coverage"] = quality.skin_coverage;
     return j;
 }

@@ -45,6 +45,7 @@ bool FitOptions::is_valid(std::string* why) const {
     const std::pair<const char*, double> weights[] = {
         {"joint_weight", joint_weight},           {"silhouette_weight", silhouette_weight},
         {"skin_weight", skin_weight},             {"pose_prior_weight", pose_prior_weight},
+        {"posture_weight", posture_weight},       {"lean_weight", lean_weight},
         {"shape_prior_weight", shape_prior_weight}};
     for (const auto& [name, w] : weights) {
         if (!weight_ok(w)) {
@@ -53,6 +54,24 @@ bool FitOptions::is_valid(std::string* why) const {
         }
     }
     if (!(joint_weight > 0)) return fail("FitOptions.joint_weight must be > 0, got 0");
+    std::string offsets_why;
+    if (!image_joints.is_valid(&offsets_why)) return fail("FitOptions.image_joints: " + offsets_why);
+    return true;
+}
+
+bool ImageJointOffsets::is_valid(std::string* why) const {
+    for (int i = 0; i < kImageJointCount; ++i) {
+        const double n = offset_m.row(i).norm();
+        if (!std::isfinite(n) || n > kMaxImageJointOffsetM) {
+            if (why) {
+                std::ostringstream os;
+                os << "offset_m of image joint '" << kImageJointNames[static_cast<size_t>(i)] << "' is "
+                   << n << " m long; it must be finite and at most " << kMaxImageJointOffsetM << " m";
+                *why = os.str();
+            }
+            return false;
+        }
+    }
     return true;
 }
 
@@ -176,6 +195,26 @@ bool is_end_site(int j) {
 
 enum class Stage { global, pose, full };
 
+// The pose prior's weight per radian of each rotation parameter: the rest-pose term of
+// pose_prior_weight everywhere but the root, plus the posture term on the trunk and legs, and
+// the lean term on the root's tilt (its x and z components; the turn about the vertical, y,
+// stays free).
+std::array<double, kRotationParams> rest_weights(const FitOptions& options) {
+    std::array<double, kRotationParams> w{};
+    const double rest = 0.3 * std::sqrt(options.pose_prior_weight);
+    const double posture = std::sqrt(options.posture_weight);
+    for (int j = 1; j < kJointCount; ++j)
+        for (int c = 0; c < 3; ++c) w[static_cast<size_t>(3 * j + c)] = rest;
+    for (const Joint j : {Joint::spine, Joint::chest, Joint::right_hip, Joint::left_hip, Joint::right_knee,
+                          Joint::left_knee})
+        for (int c = 0; c < 3; ++c)
+            w[static_cast<size_t>(3 * index(j) + c)] = std::hypot(rest, posture);
+    const double lean = std::sqrt(options.lean_weight);
+    w[0] = lean;  // the root's tilt forwards / backwards (about x)
+    w[2] = lean;  // and sideways (about z)
+    return w;
+}
+
 class Cancel : public ceres::IterationCallback {
 public:
     Cancel(const std::function<bool(double)>& progress, double from, double to, int max_iter)
@@ -226,13 +265,13 @@ struct Fitter {
         ceres::Problem problem;
         double* blocks[] = {p.rot.data(), p.trans.data(), p.cam.data(), p.z.data()};
         {
-            auto* f = new detail::JointResidual{&rest, fixed, in.joints_px,
+            auto* f = new detail::JointResidual{&rest, fixed, in.joints_px, options.image_joints.offset_m,
                                                 std::sqrt(options.joint_weight), unit_px};
             problem.AddResidualBlock(new CostFn4(f), nullptr, blocks, 4);
         }
-        if (options.pose_prior_weight > 0) {
+        if (options.pose_prior_weight + options.posture_weight + options.lean_weight > 0) {
             auto* f = new detail::PosePriorResidual{limits, 10.0 * std::sqrt(options.pose_prior_weight),
-                                                    0.3 * std::sqrt(options.pose_prior_weight)};
+                                                    rest_weights(options)};
             problem.AddResidualBlock(
                 new ceres::AutoDiffCostFunction<detail::PosePriorResidual, 2 * kRotationParams,
                                                 kRotationParams, kTranslationParams, kCameraParams,
@@ -397,8 +436,11 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
             F.rest.joint_offset + F.rest.joint_jacobian * p.z;
         for (int j = 0; j < kJointCount; ++j) rest_joints.row(j) = flat.segment<3>(3 * j).transpose();
         F.limits = JointLimits::standard(rest_joints);
-        const detail::TaylorInit init =
-            detail::taylor_initialize(rest_joints, inputs.joints_px, F.limits);
+        // Taylor's bone lengths between the marked points: the image joints at rest.
+        Eigen::Matrix<double, kJointCount, 3> marked = rest_joints;
+        for (int i = 0; i < kImageJointCount; ++i)
+            marked.row(index(kImageJoints[static_cast<size_t>(i)])) += options.image_joints.offset_m.row(i);
+        const detail::TaylorInit init = detail::taylor_initialize(marked, inputs.joints_px, F.limits);
         for (int j = 0; j < kJointCount; ++j) p.rot.segment<3>(3 * j) = init.rotations.row(j).transpose();
         p.trans = init.translation;
         p.cam << init.scale_px_per_m, init.offset_px.x(), init.offset_px.y();
@@ -434,10 +476,19 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
         fit.coefficients = detail::semantic_to_coefficients(model, F.gender, p.z);
         const ShapedBody shaped = shape_from_coefficients(model, fit.coefficients);
         const PosedBody posed = pose_body(model, shaped, fit.pose);
+        // The bones' frames for the image joints' offsets.
+        Eigen::Matrix<double, 3 * kJointCount, 1> rest_flat;
+        detail::rest_joints(F.rest, p.z.data(), rest_flat.data());
+        detail::Frames<double> frames;
+        detail::forward_kinematics_t(rest_flat.data(), p.rot.data(), p.trans.data(), frames);
         double error = 0;
         for (int i = 0; i < kImageJointCount; ++i) {
-            const Eigen::Vector2d q =
-                fit.camera.project(posed.joints.row(index(kImageJoints[static_cast<size_t>(i)])).transpose());
+            const int j = index(kImageJoints[static_cast<size_t>(i)]);
+            const int parent = std::max(0, kJointParents[static_cast<size_t>(j)]);
+            const Eigen::Vector3d marked = posed.joints.row(j).transpose() +
+                                           frames.rotation[static_cast<size_t>(parent)] *
+                                               options.image_joints.offset_m.row(i).transpose();
+            const Eigen::Vector2d q = fit.camera.project(marked);
             fit.joints_2d.row(i) = q.transpose();
             error += (q - inputs.joints_px.row(i).transpose()).norm();
         }
@@ -524,6 +575,23 @@ FitQuality fit_quality(const BodyModel& model, const FitInputs& inputs, const Bo
     if (skin_total > 0) q.skin_coverage = double(skin_covered) / skin_total;
     q.person_height_px = std::max(inputs.joints_px(0, 1), inputs.joints_px(5, 1)) - inputs.joints_px(13, 1);
     q.mean_joint_error_percent = 100.0 * summary.mean_joint_error_px / std::max(1.0, q.person_height_px);
+    // Posture in depth: the camera looks along z (both camera models), so a bone's angle out
+    // of the image plane is asin(|dz| / length).
+    const auto joint = [&](Joint j) -> Eigen::Vector3d { return posed.joints.row(index(j)).transpose(); };
+    const auto out_of_plane = [](const Eigen::Vector3d& d) {
+        const double n = d.norm();
+        return n > 0 ? std::asin(std::min(1.0, std::abs(d.z()) / n)) * 180.0 / M_PI : 0.0;
+    };
+    q.trunk_out_of_plane_deg = out_of_plane(joint(Joint::neck) - joint(Joint::pelvis));
+    for (const auto& [hip, knee, ankle] : {std::array<Joint, 3>{Joint::right_hip, Joint::right_knee, Joint::right_ankle},
+                                           std::array<Joint, 3>{Joint::left_hip, Joint::left_knee, Joint::left_ankle}}) {
+        const Eigen::Vector3d thigh = joint(knee) - joint(hip), shin = joint(ankle) - joint(knee);
+        q.leg_out_of_plane_deg = std::max({q.leg_out_of_plane_deg, out_of_plane(thigh), out_of_plane(shin)});
+        if (thigh.norm() > 0 && shin.norm() > 0) {
+            const double c = std::clamp(thigh.normalized().dot(shin.normalized()), -1.0, 1.0);
+            q.knee_bend_deg = std::max(q.knee_bend_deg, std::acos(c) * 180.0 / M_PI);
+        }
+    }
     return q;
 }
 

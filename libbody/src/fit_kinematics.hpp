@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -95,6 +96,16 @@ void forward_kinematics_t(const T* rest_joints, const T* rotations, const T* tra
             out.position[j] = out.rotation[p] * (out.rest[j] - out.rest[p]) + out.position[p];
         }
     }
+}
+
+/// Image joint i (kImageJoints order) of the posed skeleton: its model joint plus its offset
+/// in the frame of the bone that ends there (ImageJointOffsets).
+template <class T>
+Vec3<T> image_joint_t(const Frames<T>& frames, const Eigen::Matrix<double, kImageJointCount, 3>& offsets_m, int i) {
+    const int j = index(kImageJoints[static_cast<size_t>(i)]);
+    const int p = std::max(0, kJointParents[static_cast<size_t>(j)]);
+    const Vec3<T> o(T(offsets_m(i, 0)), T(offsets_m(i, 1)), T(offsets_m(i, 2)));
+    return frames.position[j] + frames.rotation[p] * o;
 }
 
 /// Linear blend skinning of one rest point with vertex k's weights.

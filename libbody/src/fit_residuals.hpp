@@ -14,6 +14,7 @@
 
 #include <ceres/ceres.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct JointResidual {
     const LinearRest* rest;
     Camera fixed;
     Eigen::Matrix<double, kImageJointCount, 2> target_px;
+    Eigen::Matrix<double, kImageJointCount, 3> offsets_m = Eigen::Matrix<double, kImageJointCount, 3>::Zero();
     double weight = 1;   ///< sqrt of the term weight
     double unit_px = 1;  ///< 1 % of the person's pixel height
 
@@ -42,7 +44,7 @@ struct JointResidual {
         Frames<T> frames;
         forward_kinematics_t(joints, rot, trans, frames);
         for (int i = 0; i < kImageJointCount; ++i) {
-            const auto p = project_t(fixed, cam, frames.position[index(kImageJoints[i])]);
+            const auto p = project_t(fixed, cam, image_joint_t(frames, offsets_m, i));
             residuals[2 * i] = weight * (p[0] - target_px(i, 0)) / unit_px;
             residuals[2 * i + 1] = weight * (p[1] - target_px(i, 1)) / unit_px;
         }
@@ -108,7 +110,9 @@ struct VertexResidual {
 struct PosePriorResidual {
     JointLimits limits;
     double limit_weight = 10;       ///< per radian outside the limits
-    double rest_weight = 0.3;       ///< per radian of rotation
+    /// Per rotation parameter (3 per joint, world-frame axis-angle components): weight per
+    /// radian of rotation away from the rest pose. The root's entries weigh its tilt.
+    std::array<double, kRotationParams> rest_weights{};
 
     template <class T>
     bool operator()(const T* rot, const T* /*trans*/, const T* /*cam*/, const T* /*z*/,
@@ -118,7 +122,7 @@ struct PosePriorResidual {
                 const int i = 3 * j + c;
                 if (j == 0) {
                     residuals[2 * i] = T(0);
-                    residuals[2 * i + 1] = T(0);
+                    residuals[2 * i + 1] = rest_weights[i] * rot[i];
                     continue;
                 }
                 // The limits bound the rotation's components in the joint's anatomical
@@ -129,7 +133,7 @@ struct PosePriorResidual {
                 if (a < T(limits.lower(j, c))) violation = T(limits.lower(j, c)) - a;
                 if (a > T(limits.upper(j, c))) violation = a - T(limits.upper(j, c));
                 residuals[2 * i] = limit_weight * violation;
-                residuals[2 * i + 1] = rest_weight * rot[i];
+                residuals[2 * i + 1] = rest_weights[i] * rot[i];
             }
         }
         return true;

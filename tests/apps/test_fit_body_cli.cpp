@@ -48,6 +48,7 @@ std::string bytes(const unsigned char* b, size_t n) { return std::string(reinter
 struct PhotoResult {
     std::string name;
     double error_px = 0, error_percent = 0, skin = 0, iou = 0, fit_seconds = 0, wall_seconds = 0;
+    double trunk_deg = 0, leg_deg = 0, knee_deg = 0;  // posture in depth
 };
 
 /// Runs the CLI on one shared photo with its label map; checks the outputs exist.
@@ -72,6 +73,9 @@ PhotoResult fit_photo(const fs::path& photos, const std::string& name, const fs:
     p.skin = f.at("skin_coverage");
     p.iou = f.at("person_iou");
     p.fit_seconds = f.at("seconds");
+    p.trunk_deg = f.at("trunk_out_of_plane_deg");
+    p.leg_deg = f.at("leg_out_of_plane_deg");
+    p.knee_deg = f.at("knee_bend_deg");
     // The reported joints are in the input's (1-based) convention: recompute the error.
     std::ifstream jin(photos / "joints" / (name + ".json"));
     const nlohmann::json input = nlohmann::json::parse(jin);
@@ -133,6 +137,9 @@ TEST_CASE("drape fit-body rejects bad inputs naming the file and field", "[apps]
     expect(image + " --joints " + joints + " --silhouette " + quoted(white) + out, 2,
            "is 2 x 2 pixels but the photo is 400 x 600");
     expect(image + " --joints " + joints + " --labels " + labels + " --gender robot" + out, 2, "robot");
+    expect(image + " --joints " + joints + " --labels " + labels + " --image-joints robot" + out, 2,
+           "--image-joints must be hand-marked or model, got 'robot'");
+    expect(image + " --joints " + joints + " --labels " + labels + " --posture-weight -1" + out, 2, "posture_weight");
     CHECK_FALSE(fs::exists(dir / "out" / "body.json"));
 }
 
@@ -153,15 +160,18 @@ TEST_CASE("drape fit-body evaluation on every shared photo", "[.eval][fit]") {
     std::vector<PhotoResult> results;
     for (const auto& name : names) results.push_back(fit_photo(photos, name, dir / name));
     std::ostringstream table;
-    table << "| photo | joint error px | joint error % | skin coverage % | person IoU | fit s | total s |\n"
-          << "|---|---:|---:|---:|---:|---:|---:|\n";
-    double err = 0, skin = 0, iou = 0, secs = 0, wall = 0, worst_skin = 1;
-    char line[256];
+    table << "| photo | joint error px | joint error % | skin coverage % | person IoU | trunk / legs out of plane, knee bend (deg) | fit s | total s |\n"
+          << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    double err = 0, skin = 0, iou = 0, secs = 0, wall = 0, worst_skin = 1, trunk = 0, leg = 0, knee = 0;
+    char line[320];
     for (const auto& p : results) {
-        std::snprintf(line, sizeof line, "| %s | %.2f | %.2f | %.1f | %.3f | %.2f | %.2f |\n",
-                      p.name.c_str(), p.error_px, p.error_percent, 100 * p.skin, p.iou,
-                      p.fit_seconds, p.wall_seconds);
+        std::snprintf(line, sizeof line, "| %s | %.2f | %.2f | %.1f | %.3f | %.0f / %.0f, %.0f | %.2f | %.2f |\n",
+                      p.name.c_str(), p.error_px, p.error_percent, 100 * p.skin, p.iou, p.trunk_deg, p.leg_deg,
+                      p.knee_deg, p.fit_seconds, p.wall_seconds);
         table << line;
+        trunk += p.trunk_deg;
+        leg += p.leg_deg;
+        knee += p.knee_deg;
         err += p.error_percent;
         skin += p.skin;
         iou += p.iou;
@@ -170,8 +180,8 @@ TEST_CASE("drape fit-body evaluation on every shared photo", "[.eval][fit]") {
         worst_skin = std::min(worst_skin, p.skin);
     }
     const double n = double(results.size());
-    std::snprintf(line, sizeof line, "| **mean** | | %.2f | %.1f (min %.1f) | %.3f | %.2f | %.2f |\n",
-                  err / n, 100 * skin / n, 100 * worst_skin, iou / n, secs / n, wall / n);
+    std::snprintf(line, sizeof line, "| **mean** | | %.2f | %.1f (min %.1f) | %.3f | %.1f / %.1f, %.1f | %.2f | %.2f |\n",
+                  err / n, 100 * skin / n, 100 * worst_skin, iou / n, trunk / n, leg / n, knee / n, secs / n, wall / n);
     table << line;
     std::printf("%s", table.str().c_str());
     CHECK(err / n <= 2.5);

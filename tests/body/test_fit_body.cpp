@@ -42,6 +42,37 @@ struct SyntheticPhoto {
     PosedBody posed;
 };
 
+// The image joints of a posed body as marked with `offsets` (model joint + offset in the
+// frame of the bone ending there), by the forward kinematics of pose.cpp.
+JointsPx marked_joints(const Pose& pose, const PosedBody& posed, const Camera& camera,
+                       const ImageJointOffsets& offsets) {
+    std::array<Eigen::Matrix3d, kJointCount> R;
+    for (int j = 0; j < kJointCount; ++j) {
+        const Eigen::Vector3d r = pose.rotations.row(j).transpose();
+        const Eigen::Matrix3d local = r.norm() > 0 ? Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix()
+                                                   : Eigen::Matrix3d::Identity();
+        const int p = kJointParents[static_cast<size_t>(j)];
+        R[static_cast<size_t>(j)] = p < 0 ? local : R[static_cast<size_t>(p)] * local;
+    }
+    JointsPx out;
+    for (int i = 0; i < kImageJointCount; ++i) {
+        const int j = index(kImageJoints[static_cast<size_t>(i)]);
+        const int p = std::max(0, kJointParents[static_cast<size_t>(j)]);
+        const Eigen::Vector3d x = posed.joints.row(j).transpose() + R[static_cast<size_t>(p)] * offsets.offset_m.row(i).transpose();
+        out.row(i) = camera.project(x).transpose();
+    }
+    return out;
+}
+
+// Fit options without the posture and lean priors: the optimiser alone, which must
+// reproduce an exact synthetic pose (bent in depth on purpose).
+FitOptions unregularised() {
+    FitOptions o;
+    o.posture_weight = 0;
+    o.lean_weight = 0;
+    return o;
+}
+
 SyntheticPhoto synthetic_photo(double height_m) {
     const BodyModel& model = BodyModel::default_model();
     SyntheticPhoto s;
@@ -65,9 +96,8 @@ SyntheticPhoto synthetic_photo(double height_m) {
     const double top = s.posed.vertices.col(1).maxCoeff();
     const double bottom = s.posed.vertices.col(1).minCoeff();
     s.camera.offset_px = Eigen::Vector2d(200.0, 300.0 + 300.0 * 0.5 * (top + bottom));
-    for (int i = 0; i < kImageJointCount; ++i)
-        s.inputs.joints_px.row(i) =
-            s.camera.project(s.posed.joints.row(index(kImageJoints[i])).transpose()).transpose();
+    // Marked as people mark photos (the fit's default convention).
+    s.inputs.joints_px = marked_joints(s.pose, s.posed, s.camera, ImageJointOffsets::hand_marked());
     s.inputs.person = render_silhouette(s.posed.vertices, model.faces, s.camera, 400, 600);
     s.inputs.skin = s.inputs.person;  // everything is "skin": the body must cover it all
     return s;
@@ -248,8 +278,10 @@ TEST_CASE("fit residuals: autodiff Jacobians match finite differences", "[body][
         fixed.offset_px = {200, 300};
         JointsPx target;
         for (int i = 0; i < kImageJointCount; ++i) target.row(i) << 150 + 7 * i, 100 + 25 * i;
+        // With the hand-marked offsets: the image joints move with their bones' frames.
         check_gradients<detail::JointResidual, 2 * kImageJointCount>(
-            new detail::JointResidual{&rest, fixed, target, 1.3, 5.0}, 2 * kImageJointCount, blocks);
+            new detail::JointResidual{&rest, fixed, target, ImageJointOffsets::hand_marked().offset_m, 1.3, 5.0},
+            2 * kImageJointCount, blocks);
 
         // Distance field of a smooth blob, so that bilinear interpolation is differentiable
         // away from cell edges at the sampled points.
@@ -273,8 +305,10 @@ TEST_CASE("fit residuals: autodiff Jacobians match finite differences", "[body][
     }
     Eigen::Matrix<double, kJointCount, 3> rj;
     for (int j = 0; j < kJointCount; ++j) rj.row(j) = model.template_joints.row(j);
+    std::array<double, detail::kRotationParams> rest_weights{};
+    for (size_t i = 0; i < rest_weights.size(); ++i) rest_weights[i] = 0.3 + 0.1 * double(i % 7);
     check_gradients<detail::PosePriorResidual, 2 * detail::kRotationParams>(
-        new detail::PosePriorResidual{JointLimits::standard(rj), 10.0, 0.3},
+        new detail::PosePriorResidual{JointLimits::standard(rj), 10.0, rest_weights},
         2 * detail::kRotationParams, blocks);
     detail::ShapePriorResidual sp;
     sp.sqrt_information = model.prior.female.covariance.llt().matrixL().solve(
@@ -320,7 +354,7 @@ TEST_CASE("fit_body recovers a synthetic body's joints and height", "[body][fit]
     s.inputs.height_m = 1.70;
     s.inputs.gender = Gender::female;
     BodyFit fit;
-    const FitSummary summary = fit_body(model, s.inputs, FitOptions{}, fit);
+    const FitSummary summary = fit_body(model, s.inputs, unregularised(), fit);
     INFO(summary.brief_report());
     REQUIRE(summary.usable());
     CHECK(summary.mean_joint_error_px < 1.0);
@@ -345,10 +379,83 @@ TEST_CASE("fit_body recovers a synthetic body's joints and height", "[body][fit]
     CHECK(q.mean_joint_error_percent == Approx(100 * summary.mean_joint_error_px / q.person_height_px));
 }
 
+TEST_CASE("fit_body places hand-marked joints with their offsets", "[body][fit][synthetic]") {
+    // The synthetic photo's joints are marked the hand-marked way: fitted as the model's own
+    // joints (no offsets) they leave a larger error.
+    const BodyModel& model = BodyModel::default_model();
+    SyntheticPhoto s = synthetic_photo(1.70);
+    s.inputs.height_m = 1.70;
+    s.inputs.gender = Gender::female;
+    FitOptions plain = unregularised();
+    plain.image_joints = ImageJointOffsets::none();
+    BodyFit with, without;
+    const FitSummary a = fit_body(model, s.inputs, unregularised(), with);
+    const FitSummary b = fit_body(model, s.inputs, plain, without);
+    INFO(a.brief_report() << "\n" << b.brief_report());
+    REQUIRE(a.usable());
+    REQUIRE(b.usable());
+    CHECK(a.mean_joint_error_px < 1.0);
+    CHECK(b.mean_joint_error_px > 2.0 * a.mean_joint_error_px);
+    // The calibrated convention: the hips marked on the side of the hips, the shoulders on
+    // the shoulders' outline, the hands beyond the wrists (docs/body-fitting.md).
+    const auto& o = ImageJointOffsets::hand_marked().offset_m;
+    CHECK(o(3, 0) > 0.015);   // left hip, towards the left
+    CHECK(o(2, 0) == -o(3, 0));  // mirrored on the right
+    CHECK(o(9, 0) > 0.01);    // left shoulder
+    CHECK(o(13, 1) > 0.0);    // head top above the model's
+}
+
+TEST_CASE("fit_body keeps a standing body upright where its legs look short", "[body][fit][synthetic][posture]") {
+    // A standing body seen from the front whose legs are marked 15 % shorter than the
+    // model's (the proportions of a photo rarely match the model's): without the posture
+    // and lean priors the fit tilts the trunk and legs towards the camera to shorten them in
+    // the image; with them it keeps them upright and leaves a small joint error instead.
+    const BodyModel& model = BodyModel::default_model();
+    SemanticRequest request;
+    request.gender = Gender::female;
+    ShapedBody shaped;
+    ShapeOptions so;
+    so.match_measurements = false;
+    shape_body(model, model.prior.complete(request), so, shaped);
+    Pose pose;
+    pose.rotations.row(index(Joint::right_shoulder)) << 0, 0, 0.6;  // arms down a little
+    pose.rotations.row(index(Joint::left_shoulder)) << 0, 0, -0.6;
+    const PosedBody posed = pose_body(model, shaped, pose);
+    Camera camera;
+    camera.scale_px_per_m = 300.0;
+    camera.offset_px = Eigen::Vector2d(200.0, 300.0 + 300.0 * 0.5 * (posed.vertices.col(1).maxCoeff() + posed.vertices.col(1).minCoeff()));
+    FitInputs in;
+    in.joints_px = marked_joints(pose, posed, camera, ImageJointOffsets::hand_marked());
+    // Shorten both legs towards their hips in the image.
+    for (const auto& [hip, knee, ankle] : {std::array<int, 3>{2, 1, 0}, std::array<int, 3>{3, 4, 5}}) {
+        const Eigen::RowVector2d h = in.joints_px.row(hip);
+        in.joints_px.row(knee) = h + 0.85 * (in.joints_px.row(knee) - h);
+        in.joints_px.row(ankle) = h + 0.85 * (in.joints_px.row(ankle) - h);
+    }
+    in.person = render_silhouette(posed.vertices, model.faces, camera, 400, 600);
+    in.gender = Gender::female;
+    BodyFit free_fit, upright_fit;
+    const FitSummary free_summary = fit_body(model, in, unregularised(), free_fit);
+    const FitSummary upright_summary = fit_body(model, in, FitOptions{}, upright_fit);
+    REQUIRE(free_summary.usable());
+    REQUIRE(upright_summary.usable());
+    const FitQuality free_q = fit_quality(model, in, free_fit, free_summary);
+    const FitQuality upright_q = fit_quality(model, in, upright_fit, upright_summary);
+    INFO("without the priors: trunk " << free_q.trunk_out_of_plane_deg << " deg, legs " << free_q.leg_out_of_plane_deg
+         << " deg, knees " << free_q.knee_bend_deg << " deg, joints " << free_q.mean_joint_error_percent
+         << " %; with them: trunk " << upright_q.trunk_out_of_plane_deg << ", legs " << upright_q.leg_out_of_plane_deg
+         << ", knees " << upright_q.knee_bend_deg << ", joints " << upright_q.mean_joint_error_percent << " %");
+    CHECK(free_q.leg_out_of_plane_deg > 20.0);
+    CHECK(upright_q.leg_out_of_plane_deg < 0.6 * free_q.leg_out_of_plane_deg);  // 15.5 against 31.7 deg
+    CHECK(upright_q.trunk_out_of_plane_deg < 5.0);
+    CHECK(upright_q.knee_bend_deg < 15.0);  // 8.5 against 63 deg
+    CHECK(upright_q.mean_joint_error_percent < 2.5);  // docs/body-fitting.md's acceptance
+}
+
 TEST_CASE("fit_body with a pinhole camera fits the joints", "[body][fit][synthetic]") {
     const BodyModel& model = BodyModel::default_model();
     const SyntheticPhoto s = synthetic_photo(1.62);
-    FitOptions options;
+    FitOptions options = unregularised();
     options.camera = CameraModel::pinhole;
     options.focal_px = 3000;  // a long lens: close to the weak-perspective photo
     BodyFit fit;
@@ -400,6 +507,18 @@ TEST_CASE("fit_body rejects bad inputs with messages naming them", "[body][fit][
     o = {};
     o.silhouette_weight = -1;
     fails_with(good, o, "silhouette_weight");
+    o = {};
+    o.posture_weight = std::nan("");
+    fails_with(good, o, "posture_weight");
+    o = {};
+    o.lean_weight = -2;
+    fails_with(good, o, "lean_weight");
+    o = {};
+    o.image_joints.offset_m(8, 1) = std::nan("");
+    fails_with(good, o, "image_joints: offset_m of image joint 'right_shoulder'");
+    o = {};
+    o.image_joints.offset_m(13, 1) = 0.3;
+    fails_with(good, o, "'head' is 0.3 m long");
     std::string why;
     CHECK(FitOptions{}.is_valid(&why));
 }

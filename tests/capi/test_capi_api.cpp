@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -463,6 +464,39 @@ TEST_CASE("fit a body to a shared photo, then segment it", "[capi][body][vision]
         CHECK(std::string(before) == after);
         drape_free(before);
         drape_free(after);
+    }
+    SECTION("options: the posture priors and the image joints' convention") {
+        drape_fit_options o;
+        o.struct_size = sizeof o;
+        REQUIRE(drape_fit_options_init(&o) == DRAPE_OK);
+        CHECK(o.posture_weight == 100.0);
+        CHECK(o.lean_weight == 1000.0);
+        CHECK(o.image_joints == DRAPE_IMAGE_JOINTS_HAND_MARKED);
+        // Without the priors the body bends in depth (docs/body-fitting.md, "Posture").
+        char* text = nullptr;
+        REQUIRE(drape_body_fit(body, &in, &o, nullptr, &text) == DRAPE_OK);
+        const nlohmann::json upright = take_json(text);
+        o.posture_weight = 0;
+        o.lean_weight = 0;
+        o.image_joints = DRAPE_IMAGE_JOINTS_MODEL;
+        REQUIRE(drape_body_fit(body, &in, &o, nullptr, &text) == DRAPE_OK);
+        const nlohmann::json bent = take_json(text);
+        CHECK(bent.at("fit").at("trunk_out_of_plane_deg").get<double>() >
+              upright.at("fit").at("trunk_out_of_plane_deg").get<double>() + 10.0);
+        // An older, smaller struct (without the new fields) gets the defaults.
+        drape_fit_options old;
+        old.struct_size = offsetof(drape_fit_options, posture_weight);
+        REQUIRE(drape_fit_options_init(&old) == DRAPE_OK);
+        REQUIRE(drape_body_fit(body, &in, &old, nullptr, &text) == DRAPE_OK);
+        const nlohmann::json again = take_json(text);
+        CHECK(again.at("pose") == upright.at("pose"));
+        o.image_joints = 7;
+        CHECK(drape_body_fit(body, &in, &o, nullptr, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("image_joints") != std::string::npos);
+        o.image_joints = DRAPE_IMAGE_JOINTS_MODEL;
+        o.posture_weight = -1;
+        CHECK(drape_body_fit(body, &in, &o, nullptr, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("posture_weight") != std::string::npos);
     }
     SECTION("bad inputs name the file") {
         in.labels_path = nullptr;

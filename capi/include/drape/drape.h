@@ -248,11 +248,21 @@ typedef struct drape_fit_inputs {
 /** Sets the paths to NULL, height_m to NaN, gender to unspecified. */
 DRAPE_API drape_status drape_fit_inputs_init(drape_fit_inputs* inputs);
 
+/** Which points of the body a joints file marks (docs/body-fitting.md, "Image joints"). */
+typedef enum drape_image_joints {
+    DRAPE_IMAGE_JOINTS_HAND_MARKED = 0, /* hand-marked photos' convention (Fashionista): the default */
+    DRAPE_IMAGE_JOINTS_MODEL = 1        /* the body model's joints themselves */
+} drape_image_joints;
+
 typedef struct drape_fit_options {
     uint32_t struct_size;
     double focal_px;    /* > 0: pinhole camera of this focal length (pixels); 0 = weak perspective */
     int32_t threads;    /* solver threads, >= 1 (default 2) */
     int32_t fit_shape;  /* 1 (default): fit the semantic shape; 0: pose and camera only */
+    /* Added after the first release (a smaller struct_size leaves them at their defaults): */
+    double posture_weight; /* >= 0 (default 100): keeps trunk and legs from bending towards the camera */
+    double lean_weight;    /* >= 0 (default 1000): keeps the whole body from leaning */
+    int32_t image_joints;  /* a drape_image_joints value (default DRAPE_IMAGE_JOINTS_HAND_MARKED) */
 } drape_fit_options;
 DRAPE_API drape_status drape_fit_options_init(drape_fit_options* options);
 

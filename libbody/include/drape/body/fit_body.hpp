@@ -29,6 +29,30 @@ struct FitInputs {
 
 enum class Termination { converged, max_iterations, failed, cancelled };
 
+/// Where the marked image joints lie relative to the model's joints. People marking a photo
+/// put a "hip" on the side of the hips, not at the hip joint's centre deep inside the
+/// pelvis, and a "shoulder" on the shoulder's outline; fitted as if they were the model's
+/// joints, such marks make the body look wider and shorter-waisted than the model, and the
+/// fit bends the trunk and legs towards the camera to match (docs/body-fitting.md, "Image
+/// joints").
+/// The longest offset ImageJointOffsets accepts, metres.
+inline constexpr double kMaxImageJointOffsetM = 0.25;
+
+struct ImageJointOffsets {
+    /// Row i (kImageJoints order): image joint i = model joint kImageJoints[i] + this offset
+    /// in metres, given in the rest frame (x towards the body's left, y up, z forwards) of the
+    /// bone that ends at that joint, and moved with that bone (the hips' with the pelvis,
+    /// the shoulders' with the clavicles, a knee's with its thigh, ...).
+    Eigen::Matrix<double, kImageJointCount, 3> offset_m = Eigen::Matrix<double, kImageJointCount, 3>::Zero();
+
+    /// The model's joints themselves (no offset).
+    static ImageJointOffsets none() { return {}; }
+    /// The convention of hand-marked fashion photos (Fashionista's 14 joints), calibrated
+    /// on the tuning part of the development photos by `drape_calibrate_image_joints`.
+    static ImageJointOffsets hand_marked();
+    bool is_valid(std::string* why = nullptr) const;
+};
+
 struct FitOptions {
     CameraModel camera = CameraModel::weak_perspective;
     double focal_px = 0;              ///< required (> 0) for the pinhole camera
@@ -42,9 +66,21 @@ struct FitOptions {
     /// 0.3 per radian away from the rest pose; shape prior: the ANSUR Mahalanobis distance.
     double joint_weight = 1.0;        ///< > 0
     double silhouette_weight = 1.0;   ///< keep the body inside the person mask
-    double skin_weight = 1.0;         ///< make the body cover the skin mask
+    double skin_weight = 2.0;         ///< make the body cover the skin mask
     double pose_prior_weight = 1.0;
+    /// Posture prior, per radian² of rotation of the trunk and legs (spine, chest, hips,
+    /// knees) away from standing: how far a bone points towards or away from the camera is
+    /// what one view cannot see, and without this term the fit bends the trunk and legs in
+    /// depth to absorb the difference between the person's proportions and the model's
+    /// (docs/body-fitting.md, "Posture"). 0 = off.
+    double posture_weight = 100.0;
+    /// Lean prior, per radian² of the whole body's tilt forwards, backwards or sideways (the
+    /// root's rotation about the camera's x and z axes; the turn about the vertical stays
+    /// free): gravity pulls the garments down the body as it stands. 0 = off.
+    double lean_weight = 1000.0;
     double shape_prior_weight = 1.0;
+    /// Which points of the body the image joints mark (see ImageJointOffsets).
+    ImageJointOffsets image_joints = ImageJointOffsets::hand_marked();
     bool fit_shape = true;            ///< false: keep the prior mean shape (or height only)
     /// Called between stages/iterations with progress in [0,1]; return false to cancel.
     std::function<bool(double)> progress;
@@ -57,7 +93,8 @@ struct BodyFit {
     Eigen::VectorXd coefficients;     ///< shape coefficients
     Pose pose;
     Camera camera;
-    Eigen::Matrix<double, kImageJointCount, 2> joints_2d;  ///< fitted joints projected, px
+    /// The fitted image joints (model joints + FitOptions::image_joints offsets) projected, px.
+    Eigen::Matrix<double, kImageJointCount, 2> joints_2d;
 };
 
 struct FitSummary {
@@ -97,6 +134,13 @@ struct FitQuality {
     /// FitSummary::mean_joint_error_px as a percentage of person_height_px (>= 1 px).
     double mean_joint_error_percent = 0;
     Mask silhouette;              ///< the fitted body rendered with the fitted camera
+    /// Posture in depth (what the photo cannot show directly), degrees: the largest angle
+    /// out of the image plane of the trunk (pelvis to neck), the thighs and the shins, and
+    /// the larger knee bend (angle between thigh and shin). A person standing to the camera
+    /// has all three near 0.
+    double trunk_out_of_plane_deg = 0;
+    double leg_out_of_plane_deg = 0;
+    double knee_bend_deg = 0;
 };
 
 /// Renders the fitted body (`fit`: coefficients, pose, camera) into the person mask's image
