@@ -40,7 +40,7 @@ struct FitArgs {
     std::optional<double> posture_weight;
     std::optional<double> lean_weight;
     std::optional<double> skin_weight;
-    std::string image_joints = "hand-marked";
+    std::string image_joints;  // empty: as the joints file says (its "marks")
 };
 
 void run_fit_body(const FitArgs& args) {
@@ -56,9 +56,9 @@ void run_fit_body(const FitArgs& args) {
     if (args.posture_weight) options.posture_weight = *args.posture_weight;
     if (args.lean_weight) options.lean_weight = *args.lean_weight;
     if (args.skin_weight) options.skin_weight = *args.skin_weight;
-    if (args.image_joints == "model")
+    if (args.image_joints == "model" || (args.image_joints.empty() && files.marks == vision::JointMarks::model))
         options.image_joints = body::ImageJointOffsets::none();
-    else if (args.image_joints != "hand-marked")
+    else if (!args.image_joints.empty() && args.image_joints != "hand-marked")
         throw InvalidInput("--image-joints must be hand-marked or model, got '" + args.image_joints + "'");
     if (args.focal_px) {
         options.camera = body::CameraModel::pinhole;
@@ -102,7 +102,8 @@ void add_fit_body_command(CLI::App& app) {
     cmd->add_option("image", args->image, "the photo (JPEG/PNG; EXIF orientation is applied)")->required();
     cmd->add_option("--joints", args->joints,
                     "JSON {\"joints\": 14 [x, y] pixels (right_ankle ... head), optional "
-                    "\"pixel_origin\": one_based (default, MATLAB) | zero_based | corner}")
+                    "\"pixel_origin\": one_based (default, MATLAB) | zero_based | corner, optional "
+                    "\"marks\": hand (default) | model}")
         ->required();
     cmd->add_option("--silhouette", args->silhouette,
                     "PNG mask of the person, garments included (non-zero = person)");
@@ -126,8 +127,9 @@ void add_fit_body_command(CLI::App& app) {
                     "or sideways (default 1000; 0 = off)");
     cmd->add_option("--skin-weight", args->skin_weight, "weight of the skin term (default 2)");
     cmd->add_option("--image-joints", args->image_joints,
-                    "which body points the joints mark: hand-marked (default: the convention of "
-                    "hand-marked fashion photos, docs/body-fitting.md) | model (the model's joints)");
+                    "which body points the joints mark: hand-marked (the convention of hand-marked "
+                    "fashion photos, docs/body-fitting.md) | model (the model's joints); default: the "
+                    "joints file's \"marks\" (hand or model), hand-marked when it has none");
     cmd->add_flag("--no-shape", args->no_shape, "keep the prior's shape, fit pose and camera only");
     cmd->callback([args] { run_fit_body(*args); });
 }

@@ -71,7 +71,8 @@ void write_scene_files(const fs::path& dir, const synth::SynthScene& scene, cons
                     {{"joints", pts},
                      {"joint_names", std::vector<std::string>(body::kImageJointNames.begin(), body::kImageJointNames.end())},
                      {"image_size", {scene.width_px, scene.height_px}},
-                     {"pixel_origin", "one_based"}});
+                     {"pixel_origin", "one_based"},
+                     {"marks", r.joints.marks == vision::JointMarks::model ? "model" : "hand"}});
 
     // Ground truth, in the schema `drape recover` writes as result.json.
     body::Pose truth_pose = scene.pose;

@@ -260,7 +260,7 @@ struct StructTraits<drape_fit_options> {
         const drape::body::FitOptions fo;
         d.posture_weight = fo.posture_weight;
         d.lean_weight = fo.lean_weight;
-        d.image_joints = DRAPE_IMAGE_JOINTS_HAND_MARKED;
+        d.image_joints = DRAPE_IMAGE_JOINTS_FROM_FILE;
         return d;
     }
 };
@@ -533,11 +533,13 @@ drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, con
         fo.fit_shape = opt.fit_shape != 0;
         fo.posture_weight = opt.posture_weight;
         fo.lean_weight = opt.lean_weight;
-        if (opt.image_joints == DRAPE_IMAGE_JOINTS_MODEL)
+        if (opt.image_joints == DRAPE_IMAGE_JOINTS_MODEL ||
+            (opt.image_joints == DRAPE_IMAGE_JOINTS_FROM_FILE && files.marks == drape::vision::JointMarks::model))
             fo.image_joints = db::ImageJointOffsets::none();
-        else if (opt.image_joints != DRAPE_IMAGE_JOINTS_HAND_MARKED)
-            throw drape::InvalidInput("options->image_joints must be DRAPE_IMAGE_JOINTS_HAND_MARKED (0) or "
-                                      "DRAPE_IMAGE_JOINTS_MODEL (1), got " + std::to_string(opt.image_joints));
+        else if (opt.image_joints != DRAPE_IMAGE_JOINTS_FROM_FILE && opt.image_joints != DRAPE_IMAGE_JOINTS_HAND_MARKED)
+            throw drape::InvalidInput("options->image_joints must be DRAPE_IMAGE_JOINTS_FROM_FILE (0), "
+                                      "DRAPE_IMAGE_JOINTS_HAND_MARKED (1) or DRAPE_IMAGE_JOINTS_MODEL (2), got " +
+                                      std::to_string(opt.image_joints));
         if (opt.focal_px != 0) {
             fo.camera = db::CameraModel::pinhole;
             fo.focal_px = opt.focal_px;

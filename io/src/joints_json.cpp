@@ -30,8 +30,14 @@ const char* origin_name(PixelOrigin o) {
 JointsFile read_joints_file(const std::filesystem::path& path, int width, int height) {
     const std::string file = path.string();
     const nlohmann::json j = read_json_file(path);
-    reject_unknown_keys(j, {"joints", "joint_names", "image_size", "pixel_origin"}, file);
+    reject_unknown_keys(j, {"joints", "joint_names", "image_size", "pixel_origin", "marks"}, file);
     JointsFile out;
+    if (j.contains("marks")) {
+        const std::string m = j["marks"].is_string() ? j["marks"].get<std::string>() : j["marks"].dump();
+        if (m == "hand") out.marks = vision::JointMarks::hand;
+        else if (m == "model") out.marks = vision::JointMarks::model;
+        else throw InvalidInput(file + ": field 'marks' = " + m + " is not one of hand, model");
+    }
     if (j.contains("pixel_origin")) {
         const std::string o = j["pixel_origin"].is_string() ? j["pixel_origin"].get<std::string>()
                                                              : j["pixel_origin"].dump();

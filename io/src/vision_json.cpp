@@ -14,6 +14,7 @@ vision::Joints read_vision_joints(const std::filesystem::path& path, int width, 
                                   double* shift_out) {
     const JointsFile file = read_joints_file(path, width, height);
     vision::Joints out;
+    out.marks = file.marks;
     for (int i = 0; i < vision::kJointCount; ++i)
         out.px[static_cast<std::size_t>(i)] = file.joints_px.row(i).transpose();
     try {

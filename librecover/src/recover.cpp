@@ -232,6 +232,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
         fit_in.gender = in.gender;
         body::FitOptions fit_options;
         fit_options.threads = options.threads;
+        if (in.joints.marks == vision::JointMarks::model) fit_options.image_joints = body::ImageJointOffsets::none();
         const body::FitSummary fit = body::fit_body(model, fit_in, fit_options, out.fit);
         summary.seconds_fit = since(ts);
         if (!fit.usable()) return finish(RecoverTermination::body_fit_failed, fit.brief_report());

@@ -189,6 +189,8 @@ TryOnSummary tryon(const body::BodyModel& model, const TryOnInputs& in, const Tr
             fit_in.gender = in.target.gender;
             body::FitOptions fit_options;
             fit_options.threads = options.threads;
+            if (in.target.joints.marks == vision::JointMarks::model)
+                fit_options.image_joints = body::ImageJointOffsets::none();
             const body::FitSummary fit = body::fit_body(model, fit_in, fit_options, out.fit);
             if (!fit.usable()) return finish(TryOnTermination::body_fit_failed, fit.brief_report());
             out.shape = out.fit.shape;

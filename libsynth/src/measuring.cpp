@@ -47,6 +47,7 @@ std::vector<DeepestInside> deepest_inside(const Eigen::MatrixXd& body_vertices,
 
 vision::Joints project_joints(const SynthScene& scene, const body::PosedBody& posed) {
     vision::Joints joints;
+    joints.marks = vision::JointMarks::model;  // the model's own joints, projected
     for (int k = 0; k < body::kImageJointCount; ++k) {
         const Eigen::Vector3d X =
             posed.joints.row(body::index(body::kImageJoints[std::size_t(k)])).transpose() + scene.placement;

@@ -128,6 +128,8 @@ TEST_CASE("drape fit-body rejects bad inputs naming the file and field", "[apps]
     expect(image + " --joints " + quoted(j13) + " --labels " + labels + out, 2, "has 13 entries");
     const fs::path jnull = write_file(dir / "jnull.json", R"({"joints": [[1,2],[1,2],[1,2],[1,null],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2]]})");
     expect(image + " --joints " + quoted(jnull) + " --labels " + labels + out, 2, "left_hip");
+    const fs::path jmarks = write_file(dir / "jmarks.json", R"({"marks": "robot", "joints": [[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2]]})");
+    expect(image + " --joints " + quoted(jmarks) + " --labels " + labels + out, 2, "field 'marks' = robot is not one of hand, model");
     const fs::path jout = write_file(dir / "jout.json", R"({"joints": [[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[1,2],[900,2]]})");
     expect(image + " --joints " + quoted(jout) + " --labels " + labels + out, 2, "outside the 400 x 600");
     // Masks: empty, and of another size than the photo.

@@ -143,6 +143,7 @@ TEST_CASE("drape synth: joints on the body, skirt labels, truth as simulated", "
     CHECK(joints["joint_names"][13] == "head");
     CHECK(joints["image_size"] == nlohmann::json({400, 600}));
     CHECK(joints["pixel_origin"] == "one_based");
+    CHECK(joints["marks"] == "model");  // the model's own joints (fit-body and recover then use no offsets)
     std::vector<std::array<double, 2>> px;
     for (const auto& j : joints["joints"]) px.push_back({j[0].get<double>() - 0.5, j[1].get<double>() - 0.5});
     for (int k = 0; k < 13; ++k) {

@@ -471,7 +471,7 @@ TEST_CASE("fit a body to a shared photo, then segment it", "[capi][body][vision]
         REQUIRE(drape_fit_options_init(&o) == DRAPE_OK);
         CHECK(o.posture_weight == 100.0);
         CHECK(o.lean_weight == 1000.0);
-        CHECK(o.image_joints == DRAPE_IMAGE_JOINTS_HAND_MARKED);
+        CHECK(o.image_joints == DRAPE_IMAGE_JOINTS_FROM_FILE);
         // Without the priors the body bends in depth (docs/body-fitting.md, "Posture").
         char* text = nullptr;
         REQUIRE(drape_body_fit(body, &in, &o, nullptr, &text) == DRAPE_OK);

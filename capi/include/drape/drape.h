@@ -250,8 +250,9 @@ DRAPE_API drape_status drape_fit_inputs_init(drape_fit_inputs* inputs);
 
 /** Which points of the body a joints file marks (docs/body-fitting.md, "Image joints"). */
 typedef enum drape_image_joints {
-    DRAPE_IMAGE_JOINTS_HAND_MARKED = 0, /* hand-marked photos' convention (Fashionista): the default */
-    DRAPE_IMAGE_JOINTS_MODEL = 1        /* the body model's joints themselves */
+    DRAPE_IMAGE_JOINTS_FROM_FILE = 0,   /* as the joints file's "marks" says; hand-marked if it has none (default) */
+    DRAPE_IMAGE_JOINTS_HAND_MARKED = 1, /* hand-marked photos' convention (Fashionista) */
+    DRAPE_IMAGE_JOINTS_MODEL = 2        /* the body model's joints themselves (synthetic scenes) */
 } drape_image_joints;
 
 typedef struct drape_fit_options {
@@ -262,7 +263,7 @@ typedef struct drape_fit_options {
     /* Added after the first release (a smaller struct_size leaves them at their defaults): */
     double posture_weight; /* >= 0 (default 100): keeps trunk and legs from bending towards the camera */
     double lean_weight;    /* >= 0 (default 1000): keeps the whole body from leaning */
-    int32_t image_joints;  /* a drape_image_joints value (default DRAPE_IMAGE_JOINTS_HAND_MARKED) */
+    int32_t image_joints;  /* a drape_image_joints value (default DRAPE_IMAGE_JOINTS_FROM_FILE) */
 } drape_fit_options;
 DRAPE_API drape_status drape_fit_options_init(drape_fit_options* options);
 

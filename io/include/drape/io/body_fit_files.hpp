@@ -17,6 +17,7 @@ namespace drape::io {
 struct BodyFitFiles {
     cv::Mat photo;                    ///< 8-bit BGR, EXIF orientation applied
     PixelOrigin origin = PixelOrigin::one_based;
+    vision::JointMarks marks = vision::JointMarks::hand;  ///< the joints file's "marks"
     body::FitInputs inputs;           ///< joints, person mask, skin mask (height, gender unset)
 };
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <drape/body/skeleton.hpp>
+#include <drape/vision/joints.hpp>
 
 #include <Eigen/Core>
 
@@ -23,6 +24,7 @@ using JointsPx = Eigen::Matrix<double, body::kImageJointCount, 2>;
 struct JointsFile {
     JointsPx joints_px;  ///< image frame, in the Fashionista order (right_ankle ... head)
     PixelOrigin origin = PixelOrigin::one_based;
+    vision::JointMarks marks = vision::JointMarks::hand;  ///< the optional "marks" field
 };
 
 /// Reads and checks a joints file for a `width` x `height` photo: known keys only, 14
