@@ -16,7 +16,6 @@
 #include <drape/io/body_fit_files.hpp>
 
 #include <Eigen/Dense>
-#include <Eigen/Geometry>
 
 #include <array>
 #include <cmath>
@@ -32,20 +31,6 @@ using namespace drape;
 // kImageJoints order: the mirrored pairs (right, left) and the midline joints.
 constexpr std::array<std::array<int, 2>, 6> kPairs = {{{0, 5}, {1, 4}, {2, 3}, {6, 11}, {7, 10}, {8, 9}}};
 constexpr std::array<int, 2> kMidline = {12, 13};
-
-// World rotation of every joint's frame from a pose's local axis-angle rotations.
-std::array<Eigen::Matrix3d, body::kJointCount> world_rotations(const body::Pose& pose) {
-    std::array<Eigen::Matrix3d, body::kJointCount> R;
-    for (int j = 0; j < body::kJointCount; ++j) {
-        const Eigen::Vector3d r = pose.rotations.row(j).transpose();
-        const double a = r.norm();
-        const Eigen::Matrix3d local =
-            a > 0 ? Eigen::AngleAxisd(a, r / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
-        const int p = body::kJointParents[static_cast<size_t>(j)];
-        R[static_cast<size_t>(j)] = p < 0 ? local : R[static_cast<size_t>(p)] * local;
-    }
-    return R;
-}
 
 }  // namespace
 
@@ -88,7 +73,8 @@ int main(int argc, char** argv) {
             leg += q.leg_out_of_plane_deg;
             knee += q.knee_bend_deg;
             ++fitted;
-            const auto R = world_rotations(fit.pose);
+            const body::PosedSkeleton skeleton =
+                body::forward_kinematics(body::shape_from_coefficients(model, fit.coefficients).joints, fit.pose);
             const double s = fit.camera.model == body::CameraModel::weak_perspective
                                  ? fit.camera.scale_px_per_m
                                  : fit.camera.focal_px / fit.camera.distance_m;
@@ -96,8 +82,9 @@ int main(int argc, char** argv) {
                 const int j = body::index(body::kImageJoints[static_cast<size_t>(i)]);
                 const int p = std::max(0, body::kJointParents[static_cast<size_t>(j)]);
                 Eigen::Matrix<double, 2, 3> J;
-                J.row(0) = s * R[static_cast<size_t>(p)].row(0);
-                J.row(1) = -s * R[static_cast<size_t>(p)].row(1);
+                const Eigen::Matrix3d R = skeleton.global[static_cast<size_t>(p)].linear();
+                J.row(0) = s * R.row(0);
+                J.row(1) = -s * R.row(1);
                 J.col(0) *= mirror;
                 const Eigen::Vector2d d = files.inputs.joints_px.row(i).transpose() - fit.joints_2d.row(i).transpose();
                 A[static_cast<size_t>(group)] += J.transpose() * J;

@@ -56,9 +56,11 @@ void run_fit_body(const FitArgs& args) {
     if (args.posture_weight) options.posture_weight = *args.posture_weight;
     if (args.lean_weight) options.lean_weight = *args.lean_weight;
     if (args.skin_weight) options.skin_weight = *args.skin_weight;
-    if (args.image_joints == "model" || (args.image_joints.empty() && files.marks == vision::JointMarks::model))
+    if (args.image_joints == "model")
         options.image_joints = body::ImageJointOffsets::none();
-    else if (!args.image_joints.empty() && args.image_joints != "hand-marked")
+    else if (args.image_joints == "hand-marked")
+        options.image_joints = body::ImageJointOffsets::hand_marked();
+    else if (!args.image_joints.empty())
         throw InvalidInput("--image-joints must be hand-marked or model, got '" + args.image_joints + "'");
     if (args.focal_px) {
         options.camera = body::CameraModel::pinhole;

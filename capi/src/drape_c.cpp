@@ -533,10 +533,11 @@ drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, con
         fo.fit_shape = opt.fit_shape != 0;
         fo.posture_weight = opt.posture_weight;
         fo.lean_weight = opt.lean_weight;
-        if (opt.image_joints == DRAPE_IMAGE_JOINTS_MODEL ||
-            (opt.image_joints == DRAPE_IMAGE_JOINTS_FROM_FILE && files.marks == drape::vision::JointMarks::model))
+        if (opt.image_joints == DRAPE_IMAGE_JOINTS_MODEL)
             fo.image_joints = db::ImageJointOffsets::none();
-        else if (opt.image_joints != DRAPE_IMAGE_JOINTS_FROM_FILE && opt.image_joints != DRAPE_IMAGE_JOINTS_HAND_MARKED)
+        else if (opt.image_joints == DRAPE_IMAGE_JOINTS_HAND_MARKED)
+            fo.image_joints = db::ImageJointOffsets::hand_marked();
+        else if (opt.image_joints != DRAPE_IMAGE_JOINTS_FROM_FILE)
             throw drape::InvalidInput("options->image_joints must be DRAPE_IMAGE_JOINTS_FROM_FILE (0), "
                                       "DRAPE_IMAGE_JOINTS_HAND_MARKED (1) or DRAPE_IMAGE_JOINTS_MODEL (2), got " +
                                       std::to_string(opt.image_joints));

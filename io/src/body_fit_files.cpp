@@ -30,8 +30,8 @@ BodyFitFiles read_body_fit_files(const std::string& image, const std::string& jo
     f.photo = read_photo(image);
     const JointsFile joints_file = read_joints_file(joints, f.photo.cols, f.photo.rows);
     f.origin = joints_file.origin;
-    f.marks = joints_file.marks;
     f.inputs.joints_px = joints_file.joints_px;
+    f.inputs.marks = joints_file.marks;
     if (!labels.empty()) {
         LabelMasks masks = read_label_masks(labels);
         require_size(masks.person, f.photo, "label map", labels);

@@ -55,8 +55,25 @@ bool FitOptions::is_valid(std::string* why) const {
     }
     if (!(joint_weight > 0)) return fail("FitOptions.joint_weight must be > 0, got 0");
     std::string offsets_why;
-    if (!image_joints.is_valid(&offsets_why)) return fail("FitOptions.image_joints: " + offsets_why);
+    if (image_joints && !image_joints->is_valid(&offsets_why)) return fail("FitOptions.image_joints: " + offsets_why);
     return true;
+}
+
+ImageJointOffsets ImageJointOffsets::of(core::JointMarks marks) {
+    return marks == core::JointMarks::model ? none() : hand_marked();
+}
+
+Eigen::Matrix<double, kImageJointCount, 3> image_joint_positions(const PosedSkeleton& skeleton,
+                                                                 const ImageJointOffsets& offsets) {
+    Eigen::Matrix<double, kImageJointCount, 3> out;
+    for (int i = 0; i < kImageJointCount; ++i) {
+        const int j = index(kImageJoints[static_cast<size_t>(i)]);
+        const int bone = std::max(0, kJointParents[static_cast<size_t>(j)]);
+        out.row(i) = (skeleton.joints.row(j).transpose() +
+                      skeleton.global[static_cast<size_t>(bone)].linear() * offsets.offset_m.row(i).transpose())
+                         .transpose();
+    }
+    return out;
 }
 
 bool ImageJointOffsets::is_valid(std::string* why) const {
@@ -241,6 +258,7 @@ struct Fitter {
     const BodyModel& model;
     const FitInputs& in;
     const FitOptions& options;
+    ImageJointOffsets offsets;  // options.image_joints, or those of in.marks
     Gender gender = Gender::female;
     Camera fixed;  // the camera model and the pinhole constants
     detail::LinearRest rest;
@@ -265,7 +283,7 @@ struct Fitter {
         ceres::Problem problem;
         double* blocks[] = {p.rot.data(), p.trans.data(), p.cam.data(), p.z.data()};
         {
-            auto* f = new detail::JointResidual{&rest, fixed, in.joints_px, options.image_joints.offset_m,
+            auto* f = new detail::JointResidual{&rest, fixed, in.joints_px, offsets.offset_m,
                                                 std::sqrt(options.joint_weight), unit_px};
             problem.AddResidualBlock(new CostFn4(f), nullptr, blocks, 4);
         }
@@ -411,6 +429,7 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
     const SemanticShape initial_shape = model.prior.complete(request);
 
     Fitter F(model, inputs, options);
+    F.offsets = options.image_joints.value_or(ImageJointOffsets::of(inputs.marks));
     F.gender = initial_shape.gender;
     F.fixed.model = options.camera;
     F.rest = detail::make_linear_rest(model, F.gender, sample_vertices(model));
@@ -439,7 +458,7 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
         // Taylor's bone lengths between the marked points: the image joints at rest.
         Eigen::Matrix<double, kJointCount, 3> marked = rest_joints;
         for (int i = 0; i < kImageJointCount; ++i)
-            marked.row(index(kImageJoints[static_cast<size_t>(i)])) += options.image_joints.offset_m.row(i);
+            marked.row(index(kImageJoints[static_cast<size_t>(i)])) += F.offsets.offset_m.row(i);
         const detail::TaylorInit init = detail::taylor_initialize(marked, inputs.joints_px, F.limits);
         for (int j = 0; j < kJointCount; ++j) p.rot.segment<3>(3 * j) = init.rotations.row(j).transpose();
         p.trans = init.translation;
@@ -475,20 +494,11 @@ FitSummary fit_body(const BodyModel& model, const FitInputs& inputs, const FitOp
         fit.camera = p.camera(F.fixed);
         fit.coefficients = detail::semantic_to_coefficients(model, F.gender, p.z);
         const ShapedBody shaped = shape_from_coefficients(model, fit.coefficients);
-        const PosedBody posed = pose_body(model, shaped, fit.pose);
-        // The bones' frames for the image joints' offsets.
-        Eigen::Matrix<double, 3 * kJointCount, 1> rest_flat;
-        detail::rest_joints(F.rest, p.z.data(), rest_flat.data());
-        detail::Frames<double> frames;
-        detail::forward_kinematics_t(rest_flat.data(), p.rot.data(), p.trans.data(), frames);
+        const Eigen::Matrix<double, kImageJointCount, 3> marked =
+            image_joint_positions(forward_kinematics(shaped.joints, fit.pose), F.offsets);
         double error = 0;
         for (int i = 0; i < kImageJointCount; ++i) {
-            const int j = index(kImageJoints[static_cast<size_t>(i)]);
-            const int parent = std::max(0, kJointParents[static_cast<size_t>(j)]);
-            const Eigen::Vector3d marked = posed.joints.row(j).transpose() +
-                                           frames.rotation[static_cast<size_t>(parent)] *
-                                               options.image_joints.offset_m.row(i).transpose();
-            const Eigen::Vector2d q = fit.camera.project(marked);
+            const Eigen::Vector2d q = fit.camera.project(marked.row(i).transpose());
             fit.joints_2d.row(i) = q.transpose();
             error += (q - inputs.joints_px.row(i).transpose()).norm();
         }

@@ -224,6 +224,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
         body::FitInputs fit_in;
         for (int j = 0; j < body::kImageJointCount; ++j)
             fit_in.joints_px.row(j) = in.joints.px[static_cast<size_t>(j)].transpose();
+        fit_in.marks = in.joints.marks;
         const int background = table.background_id(), skin = table.skin_id();
         fit_in.person = mask_of(out.segmentation.labels, [&](int id) { return id != background; });
         fit_in.skin = mask_of(out.segmentation.labels, [&](int id) { return id == skin; });
@@ -232,7 +233,6 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
         fit_in.gender = in.gender;
         body::FitOptions fit_options;
         fit_options.threads = options.threads;
-        if (in.joints.marks == vision::JointMarks::model) fit_options.image_joints = body::ImageJointOffsets::none();
         const body::FitSummary fit = body::fit_body(model, fit_in, fit_options, out.fit);
         summary.seconds_fit = since(ts);
         if (!fit.usable()) return finish(RecoverTermination::body_fit_failed, fit.brief_report());

@@ -182,6 +182,7 @@ TryOnSummary tryon(const body::BodyModel& model, const TryOnInputs& in, const Tr
             body::FitInputs fit_in;
             for (int j = 0; j < body::kImageJointCount; ++j)
                 fit_in.joints_px.row(j) = in.target.joints.px[size_t(j)].transpose();
+            fit_in.marks = in.target.joints.marks;
             fit_in.person = class_mask(out.segmentation.labels, table.background_id(), true);
             fit_in.skin = class_mask(out.segmentation.labels, table.skin_id(), false);
             if (fit_in.skin.count() == 0) fit_in.skin = body::Mask{};
@@ -189,8 +190,6 @@ TryOnSummary tryon(const body::BodyModel& model, const TryOnInputs& in, const Tr
             fit_in.gender = in.target.gender;
             body::FitOptions fit_options;
             fit_options.threads = options.threads;
-            if (in.target.joints.marks == vision::JointMarks::model)
-                fit_options.image_joints = body::ImageJointOffsets::none();
             const body::FitSummary fit = body::fit_body(model, fit_in, fit_options, out.fit);
             if (!fit.usable()) return finish(TryOnTermination::body_fit_failed, fit.brief_report());
             out.shape = out.fit.shape;

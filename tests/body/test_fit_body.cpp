@@ -42,25 +42,12 @@ struct SyntheticPhoto {
     PosedBody posed;
 };
 
-// The image joints of a posed body as marked with `offsets` (model joint + offset in the
-// frame of the bone ending there), by the forward kinematics of pose.cpp.
-JointsPx marked_joints(const Pose& pose, const PosedBody& posed, const Camera& camera,
+// The image joints of a posed body as marked with `offsets`, projected.
+JointsPx marked_joints(const ShapedBody& shaped, const Pose& pose, const Camera& camera,
                        const ImageJointOffsets& offsets) {
-    std::array<Eigen::Matrix3d, kJointCount> R;
-    for (int j = 0; j < kJointCount; ++j) {
-        const Eigen::Vector3d r = pose.rotations.row(j).transpose();
-        const Eigen::Matrix3d local = r.norm() > 0 ? Eigen::AngleAxisd(r.norm(), r.normalized()).toRotationMatrix()
-                                                   : Eigen::Matrix3d::Identity();
-        const int p = kJointParents[static_cast<size_t>(j)];
-        R[static_cast<size_t>(j)] = p < 0 ? local : R[static_cast<size_t>(p)] * local;
-    }
+    const auto x = image_joint_positions(forward_kinematics(shaped.joints, pose), offsets);
     JointsPx out;
-    for (int i = 0; i < kImageJointCount; ++i) {
-        const int j = index(kImageJoints[static_cast<size_t>(i)]);
-        const int p = std::max(0, kJointParents[static_cast<size_t>(j)]);
-        const Eigen::Vector3d x = posed.joints.row(j).transpose() + R[static_cast<size_t>(p)] * offsets.offset_m.row(i).transpose();
-        out.row(i) = camera.project(x).transpose();
-    }
+    for (int i = 0; i < kImageJointCount; ++i) out.row(i) = camera.project(x.row(i).transpose()).transpose();
     return out;
 }
 
@@ -97,7 +84,7 @@ SyntheticPhoto synthetic_photo(double height_m) {
     const double bottom = s.posed.vertices.col(1).minCoeff();
     s.camera.offset_px = Eigen::Vector2d(200.0, 300.0 + 300.0 * 0.5 * (top + bottom));
     // Marked as people mark photos (the fit's default convention).
-    s.inputs.joints_px = marked_joints(s.pose, s.posed, s.camera, ImageJointOffsets::hand_marked());
+    s.inputs.joints_px = marked_joints(s.shaped, s.pose, s.camera, ImageJointOffsets::hand_marked());
     s.inputs.person = render_silhouette(s.posed.vertices, model.faces, s.camera, 400, 600);
     s.inputs.skin = s.inputs.person;  // everything is "skin": the body must cover it all
     return s;
@@ -198,6 +185,14 @@ TEST_CASE("templated kinematics agree with pose.cpp and the affine shape map",
     for (int j = 0; j < kJointCount; ++j) {
         CHECK((joints.segment<3>(3 * j) - shaped.joints.row(j).transpose()).norm() < 1e-9);
         CHECK((frames.position[j] - posed.joints.row(j).transpose()).norm() < 1e-9);
+    }
+    // The image joints with their offsets: the templated residual's and image_joint_positions.
+    const ImageJointOffsets offsets = ImageJointOffsets::hand_marked();
+    const auto marked = image_joint_positions(forward_kinematics(shaped.joints, pose), offsets);
+    for (int i = 0; i < kImageJointCount; ++i) {
+        CHECK((detail::image_joint_t(frames, offsets.offset_m, i) - marked.row(i).transpose()).norm() < 1e-9);
+        CHECK((marked.row(i) - posed.joints.row(index(kImageJoints[static_cast<size_t>(i)]))).norm() ==
+              Approx(offsets.offset_m.row(i).norm()).margin(1e-9));  // a rigid offset
     }
     for (int k = 0; k < rest.vertex_count(); ++k) {
         const Eigen::Vector3d x = detail::rest_vertex(rest, k, shape.values.data());
@@ -425,7 +420,7 @@ TEST_CASE("fit_body keeps a standing body upright where its legs look short", "[
     camera.scale_px_per_m = 300.0;
     camera.offset_px = Eigen::Vector2d(200.0, 300.0 + 300.0 * 0.5 * (posed.vertices.col(1).maxCoeff() + posed.vertices.col(1).minCoeff()));
     FitInputs in;
-    in.joints_px = marked_joints(pose, posed, camera, ImageJointOffsets::hand_marked());
+    in.joints_px = marked_joints(shaped, pose, camera, ImageJointOffsets::hand_marked());
     // Shorten both legs towards their hips in the image.
     for (const auto& [hip, knee, ankle] : {std::array<int, 3>{2, 1, 0}, std::array<int, 3>{3, 4, 5}}) {
         const Eigen::RowVector2d h = in.joints_px.row(hip);
@@ -514,10 +509,11 @@ TEST_CASE("fit_body rejects bad inputs with messages naming them", "[body][fit][
     o.lean_weight = -2;
     fails_with(good, o, "lean_weight");
     o = {};
-    o.image_joints.offset_m(8, 1) = std::nan("");
+    o.image_joints = ImageJointOffsets::hand_marked();
+    o.image_joints->offset_m(8, 1) = std::nan("");
     fails_with(good, o, "image_joints: offset_m of image joint 'right_shoulder'");
-    o = {};
-    o.image_joints.offset_m(13, 1) = 0.3;
+    o.image_joints = ImageJointOffsets::none();
+    o.image_joints->offset_m(13, 1) = 0.3;
     fails_with(good, o, "'head' is 0.3 m long");
     std::string why;
     CHECK(FitOptions{}.is_valid(&why));

@@ -17,8 +17,7 @@ namespace drape::io {
 struct BodyFitFiles {
     cv::Mat photo;                    ///< 8-bit BGR, EXIF orientation applied
     PixelOrigin origin = PixelOrigin::one_based;
-    vision::JointMarks marks = vision::JointMarks::hand;  ///< the joints file's "marks"
-    body::FitInputs inputs;           ///< joints, person mask, skin mask (height, gender unset)
+    body::FitInputs inputs;           ///< joints (and their "marks"), person mask, skin mask (height, gender unset)
 };
 
 /// Reads the photo, its 14 joints and either a silhouette (with an optional skin mask) or a

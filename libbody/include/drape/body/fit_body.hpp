@@ -6,6 +6,7 @@
 #include <drape/body/body_model.hpp>
 #include <drape/body/camera.hpp>
 #include <drape/body/pose.hpp>
+#include <drape/core/joint_marks.hpp>
 
 #include <Eigen/Core>
 
@@ -21,6 +22,8 @@ struct FitInputs {
     /// 1-based MATLAB coordinates convert by subtracting 0.5; 0-based centres by adding 0.5.)
     /// Every joint must lie within [0, width] x [0, height] of the person mask.
     Eigen::Matrix<double, kImageJointCount, 2> joints_px;
+    /// What the joints mark: people's marks (hand-marked offsets) or the model's joints.
+    core::JointMarks marks = core::JointMarks::hand;
     Mask person;                    ///< person silhouette (garments included)
     Mask skin;                      ///< optional (width 0 = none): visible skin pixels
     std::optional<double> height_m;  ///< known stature
@@ -29,15 +32,15 @@ struct FitInputs {
 
 enum class Termination { converged, max_iterations, failed, cancelled };
 
+/// The longest offset ImageJointOffsets accepts, metres.
+inline constexpr double kMaxImageJointOffsetM = 0.25;
+
 /// Where the marked image joints lie relative to the model's joints. People marking a photo
 /// put a "hip" on the side of the hips, not at the hip joint's centre deep inside the
 /// pelvis, and a "shoulder" on the shoulder's outline; fitted as if they were the model's
 /// joints, such marks make the body look wider and shorter-waisted than the model, and the
 /// fit bends the trunk and legs towards the camera to match (docs/body-fitting.md, "Image
 /// joints").
-/// The longest offset ImageJointOffsets accepts, metres.
-inline constexpr double kMaxImageJointOffsetM = 0.25;
-
 struct ImageJointOffsets {
     /// Row i (kImageJoints order): image joint i = model joint kImageJoints[i] + this offset
     /// in metres, given in the rest frame (x towards the body's left, y up, z forwards) of the
@@ -50,8 +53,15 @@ struct ImageJointOffsets {
     /// The convention of hand-marked fashion photos (Fashionista's 14 joints), calibrated
     /// on the tuning part of the development photos by `drape_calibrate_image_joints`.
     static ImageJointOffsets hand_marked();
+    /// hand_marked() for JointMarks::hand, none() for JointMarks::model.
+    static ImageJointOffsets of(core::JointMarks marks);
     bool is_valid(std::string* why = nullptr) const;
 };
+
+/// The posed positions of the 14 image joints (kImageJoints order): each model joint plus
+/// its offset, turned with the bone that ends at the joint.
+Eigen::Matrix<double, kImageJointCount, 3> image_joint_positions(const PosedSkeleton& skeleton,
+                                                                 const ImageJointOffsets& offsets);
 
 struct FitOptions {
     CameraModel camera = CameraModel::weak_perspective;
@@ -79,8 +89,9 @@ struct FitOptions {
     /// free): gravity pulls the garments down the body as it stands. 0 = off.
     double lean_weight = 1000.0;
     double shape_prior_weight = 1.0;
-    /// Which points of the body the image joints mark (see ImageJointOffsets).
-    ImageJointOffsets image_joints = ImageJointOffsets::hand_marked();
+    /// Which points of the body the image joints mark (see ImageJointOffsets); empty = as
+    /// FitInputs::marks says (ImageJointOffsets::of).
+    std::optional<ImageJointOffsets> image_joints;
     bool fit_shape = true;            ///< false: keep the prior mean shape (or height only)
     /// Called between stages/iterations with progress in [0,1]; return false to cancel.
     std::function<bool(double)> progress;
@@ -93,7 +104,7 @@ struct BodyFit {
     Eigen::VectorXd coefficients;     ///< shape coefficients
     Pose pose;
     Camera camera;
-    /// The fitted image joints (model joints + FitOptions::image_joints offsets) projected, px.
+    /// The fitted image joints (model joints + their offsets, image_joint_positions) projected, px.
     Eigen::Matrix<double, kImageJointCount, 2> joints_2d;
 };
 

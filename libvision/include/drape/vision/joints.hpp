@@ -2,6 +2,8 @@
 // give the body scale. JSON files are read in the app layer; the library takes typed joints.
 #pragma once
 
+#include <drape/core/joint_marks.hpp>
+
 #include <Eigen/Core>
 
 #include <array>
@@ -25,18 +27,15 @@ inline constexpr std::array<std::string_view, kJointCount> kJointNames = {
     "left_ankle",  "right_hand",  "right_elbow",    "right_shoulder", "left_shoulder",
     "left_elbow",  "left_hand",   "neck",           "head"};
 
+/// What the 14 points mark (core/joint_marks.hpp).
+using JointMarks = core::JointMarks;
+
 /// 14 joints in the image frame: pixels, origin at the image's top-left corner, x right,
 /// y down, the centre of pixel (column i, row j) at (i + 0.5, j + 0.5) (the libbody
 /// camera.hpp convention; Fashionista's 1-based values convert by subtracting 0.5).
-/// What the 14 points mark (body::ImageJointOffsets, docs/body-fitting.md "Image joints"):
-/// `hand` — where people mark joints on a photo (the hips' and shoulders' outline, the
-/// hand, the top of the hair); `model` — the body model's joints themselves (synthetic
-/// scenes project them).
-enum class JointMarks { hand, model };
-
 struct Joints {
     std::array<Eigen::Vector2d, kJointCount> px{};
-    JointMarks marks = JointMarks::hand;
+    JointMarks marks = JointMarks::hand;  ///< what the points mark
 
     const Eigen::Vector2d& operator[](Joint j) const { return px[static_cast<size_t>(j)]; }
     Eigen::Vector2d& operator[](Joint j) { return px[static_cast<size_t>(j)]; }
