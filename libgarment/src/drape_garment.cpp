@@ -72,6 +72,8 @@ bool DrapeOptions::is_valid(std::string* why) const {
     if (!(waistband_stretching_factor >= 1 && std::isfinite(waistband_stretching_factor)))
         return fail("DrapeOptions::waistband_stretching_factor = " + std::to_string(waistband_stretching_factor) +
                     " must be >= 1");
+    if (!(contact_stiffening >= 1 && std::isfinite(contact_stiffening)))
+        return fail("DrapeOptions::contact_stiffening = " + std::to_string(contact_stiffening) + " must be >= 1");
     if (!(penetration_tolerance_m > 0))
         return fail("DrapeOptions::penetration_tolerance_m = " + std::to_string(penetration_tolerance_m) +
                     " must be > 0");
@@ -89,6 +91,8 @@ std::string DrapeSummary::brief_report() const {
        << " steps (seams closed at step " << steps_to_close_seams << "), static |g| " << static_gradient_n
        << " N in " << static_newton_iterations << " iterations, mean drop " << 100 * mean_drop_m << " cm, "
        << seconds << " s";
+    if (crossings_repaired > 0) os << ", " << crossings_repaired << " crossings repaired at rest";
+    if (contact_stiffened) os << ", contact stiffened";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
 }
@@ -160,7 +164,11 @@ DrapeSummary drape_garment(const GarmentMesh& mesh, const Eigen::MatrixX3d& init
     detail::check_drape_inputs(mesh, initial_positions, body_path, materials, face_material, options);
     detail::DrapeRun run(mesh, initial_positions, body_path, body_faces, materials, face_material, options);
     if (!run.untangle(out_positions)) return run.summary();  // cancelled
-    if (run.close_seams_and_settle() && run.settled() && options.static_solve) run.solve_static();
+    if (run.close_seams_and_settle() && run.settled()) {
+        if (options.static_solve) run.solve_static();
+        if (run.settled()) run.repair_crossings();
+        if (run.settled()) run.stiffen_contact();
+    }
     run.measure(out_positions);
     DrapeSummary summary = run.summary();
     summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -4,6 +4,7 @@
 #include "drape_run.hpp"
 
 #include "dressing_internal.hpp"
+#include <drape/garment/untangle.hpp>
 
 #include <drape/cloth/obstacle.hpp>
 #include <drape/core/errors.hpp>
@@ -285,6 +286,84 @@ void DrapeRun::solve_static() {
         summary_.termination = settled_ ? DrapeTermination::converged : DrapeTermination::static_failed;
         summary_.message = reason + (settled_ ? "; equilibrium reached by stepping instead" : "");
     }
+}
+
+void DrapeRun::repair_crossings() {
+    if (!options_.repair_crossings || options_.fallback_steps < 1) return;
+    const cloth::ContactReport before = sim_.contact_report();
+    if (before.self_intersections == 0) return;
+    Eigen::MatrixX3d X = garment_positions(sim_.positions());
+    const cloth::Obstacle& body = *sim_.obstacle();
+    const UntangleSummary u = untangle_garment(mesh_, body.positions(), body.faces(), UntangleOptions{}, X);
+    auto note = [&](const std::string& t) { notes_ += std::string(notes_.empty() ? "" : "; ") + t; };
+    if (u.self_intersections >= before.self_intersections) {
+        note("the " + std::to_string(before.self_intersections) + " crossings at rest could not be untangled (" +
+             std::to_string(u.self_intersections) + " left)");
+        return;
+    }
+    // Stitched vertices moved together: each simulation vertex takes its garment vertices' place.
+    Eigen::MatrixX3d x = sim_.positions();
+    for (int v = 0; v < nv_; ++v) x.row(sim_vertex_[size_t(v)]) = X.row(v);
+    const Eigen::MatrixX3d kept_x = sim_.positions();
+    const Eigen::MatrixX3d kept_v = sim_.velocities();
+    const DrapeSummary kept = summary_;
+    sim_.set_positions(x);
+    sim_.set_velocities(Eigen::MatrixX3d::Zero(x.rows(), 3));
+    const bool ran = run_steps(options_.fallback_steps, 1, DrapePhase::settling);
+    if (!ran && summary_.termination == DrapeTermination::cancelled) return;
+    const cloth::ContactReport after = sim_.contact_report();
+    const bool at_rest = ran && settled_;
+    if (at_rest && after.self_intersections < before.self_intersections &&
+        after.max_penetration_m <= std::max(before.max_penetration_m, options_.penetration_tolerance_m) &&
+        after.max_stitch_gap_m < options_.seam_gap_tolerance_m) {
+        summary_.crossings_repaired = before.self_intersections - after.self_intersections;
+        return;
+    }
+    const int steps = summary_.steps;
+    sim_.set_positions(kept_x);
+    sim_.set_velocities(kept_v);
+    summary_ = kept;
+    summary_.steps = steps;
+    settled_ = true;
+    note("untangled, the cloth came to rest with " + std::to_string(after.self_intersections) + " crossings and " +
+         std::to_string(1000 * after.max_penetration_m) + " mm in the body" + (at_rest ? "" : ", not at rest") +
+         " (before: " + std::to_string(before.self_intersections) + "): the rest state before is kept");
+}
+
+void DrapeRun::stiffen_contact() {
+    if (!(options_.contact_stiffening > 1) || options_.fallback_steps < 1) return;
+    const cloth::ContactReport before = sim_.contact_report();
+    if (before.max_penetration_m <= options_.penetration_tolerance_m) return;
+    // The same cloth (welded or not), state, stitches and body, behind the surface stiffer.
+    cloth::SimulatorOptions stiff = options_.simulator;
+    stiff.contact_inside_stiffness_factor *= options_.contact_stiffening;
+    cloth::ClothMesh m = sim_.mesh();
+    m.positions = sim_.positions();
+    cloth::Simulator next(std::move(m), materials_, face_material_, stiff);
+    next.set_obstacle(*sim_.obstacle());
+    next.set_stitches(sim_.stitches());
+    next.set_velocities(sim_.velocities());
+    const DrapeSummary kept = summary_;
+    cloth::Simulator previous = std::exchange(sim_, std::move(next));
+    const bool ran = run_steps(options_.fallback_steps, 1, DrapePhase::settling);
+    if (!ran && summary_.termination == DrapeTermination::cancelled) return;  // the state reached, as cancelled
+    const cloth::ContactReport after = sim_.contact_report();
+    if (ran && settled_ && after.max_penetration_m < before.max_penetration_m &&
+        after.self_intersections <= before.self_intersections &&
+        after.max_stitch_gap_m < options_.seam_gap_tolerance_m) {
+        summary_.contact_stiffened = true;
+        return;
+    }
+    const bool at_rest = ran && settled_;
+    const int steps = summary_.steps;
+    sim_ = std::move(previous);
+    summary_ = kept;
+    summary_.steps = steps;  // the steps were taken
+    settled_ = true;
+    notes_ += std::string(notes_.empty() ? "" : "; ") + "a stiffer contact left the cloth " +
+              std::to_string(1000 * after.max_penetration_m) + " mm in the body (" +
+              std::to_string(after.self_intersections) + " self-intersections" + (at_rest ? "" : ", not at rest") +
+              "): the rest state before it is kept";
 }
 
 void DrapeRun::measure(Eigen::MatrixX3d& out_positions) {

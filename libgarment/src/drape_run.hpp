@@ -75,6 +75,16 @@ public:
     /// cleanly; else equilibrium by stepping (DrapeOptions::fallback_steps).
     void solve_static();
 
+    /// At rest with crossing layers: untangled against the final body and stepped on to
+    /// rest (DrapeOptions::repair_crossings), kept only if better; else the state and
+    /// summary are as before.
+    void repair_crossings();
+
+    /// At rest but pressed deeper than the tolerance into the body: stepped on to rest with
+    /// the penalty behind the body's surface stiffer (DrapeOptions::contact_stiffening),
+    /// kept only if better; else the state and summary are as before.
+    void stiffen_contact();
+
     /// The final measurements into the summary; out_positions (#V x 3) the garment's.
     void measure(Eigen::MatrixX3d& out_positions);
 

@@ -73,6 +73,21 @@ struct DrapeOptions {
     /// (the equilibrium is then reached by stepping), >= 0.
     int fallback_steps = 200;
     double penetration_tolerance_m = 1e-3;    ///< `usable()` allows this much, > 0
+    /// A cloth at rest that is still pressed deeper than penetration_tolerance_m into the
+    /// body (a tank's strap over the shoulder blade, a bodice under the arm: 1.05-1.3 mm on
+    /// the photos, with simulator.contact_inside_stiffness_factor 10) is stepped on to rest
+    /// with the penalty behind the body's surface this many times stiffer, at most
+    /// fallback_steps steps; the stiffer state is kept only if it is at rest, lies less deep
+    /// and has no more self-intersections and no open seam (the summary's
+    /// `contact_stiffened`). Drapes within the tolerance are not touched. 1 = off; >= 1.
+    double contact_stiffening = 10;
+    /// A cloth at rest whose layers cross (a fold pinched under a raised arm, a sleeve
+    /// squeezed against the trunk: the penalty self-contact then holds the crossing) is
+    /// separated by untangle_garment (intersection-contour style, against the final body)
+    /// and stepped on to rest with self-contact, at most fallback_steps steps; the new state
+    /// is kept only if it is at rest with fewer crossings, no deeper in the body (or within
+    /// penetration_tolerance_m) and the seams closed (the summary's `crossings_repaired`).
+    bool repair_crossings = true;
     /// `usable()` requires the garment to stay on the body: its vertices may sink along
     /// gravity by at most this much on average (m) from the dressed state, relative to the
     /// body's own mean sink along the path, > 0. Measured (4 cm edges): pants 0.4 cm, t-shirt
@@ -120,6 +135,10 @@ struct DrapeSummary {
     int stitches = 0;
     double mass_kg = 0;               ///< of the cloth: Σ ρ A over its faces' fabrics
     bool welded = false;              ///< the seams were welded (see DrapeOptions::weld_seams)
+    /// The rest state came from the stiffened contact (DrapeOptions::contact_stiffening).
+    bool contact_stiffened = false;
+    /// Crossing triangle pairs of the rest state removed by DrapeOptions::repair_crossings.
+    int crossings_repaired = 0;
     int steps_to_weld = -1;           ///< step at which they were, -1: never
     int steps = 0;                    ///< dynamic steps taken (untangling included)
     int untangle_steps = 0;           ///< of which without self-contact
