@@ -471,7 +471,8 @@ TEST_CASE("drape: a cloth at rest pressed into the body is brought out by a stif
         options.simulator.contact_stiffness_n_per_m3 = 2e4;
         options.contact_stiffening = stiffening;
         options.fallback_steps = fallback_steps;
-        return dress_and_drape(pattern, mesh, f.model, f.shaped, pose, material, DressingOptions{}, options, X);
+        return dress_and_drape(shirt.pattern, shirt.mesh, shirt.f.model, shirt.f.shaped, shirt.pose, material,
+                               DressingOptions{}, options, X);
     };
     Eigen::MatrixX3d X_off, X_on, X_short;
     const DrapeSummary off = drape(1.0, 200, X_off);
@@ -526,7 +527,7 @@ TEST_CASE("drape: crossings held at rest are untangled and the cloth settles aga
     REQUIRE(dress_and_drape(pattern, mesh, f.model, f.shaped, pose, material, DressingOptions{}, DrapeOptions{}, X_rest)
                 .usable());
     const auto is_sleeve = [&](int v) {
-        const BodyPart b = pattern.placements[size_t(mesh.panel_of_vertex[v])].body_part;
+        const BodyPart b = shirt.pattern.placements[size_t(shirt.mesh.panel_of_vertex[v])].body_part;
         return b == BodyPart::left_sleeve || b == BodyPart::right_sleeve;
     };
     int s = -1, t = -1;
