@@ -108,6 +108,8 @@ nlohmann::json to_json(const garment::DrapeSummary& d) {
             {"steps", d.steps},
             {"steps_to_close_seams", d.steps_to_close_seams},
             {"welded", d.welded},
+            {"crossings_repaired", d.crossings_repaired},
+            {"contact_stiffened", d.contact_stiffened},
             {"message", d.message},
             {"seconds_drape", d.seconds}};
 }

@@ -31,7 +31,8 @@ nlohmann::json drape_json(const recover::DrapeState& d) {
             {"seam_gap_max_m", d.seam_gap_max_m},
             {"self_intersections", d.self_intersections},
             {"mesh", d.source == recover::DrapeState::Source::search ? "search" : "output"},
-            {"edge_cm", d.edge_cm}};
+            {"edge_cm", d.edge_cm},
+            {"message", d.message}};
 }
 
 namespace {

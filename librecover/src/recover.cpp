@@ -500,7 +500,8 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                                      c.max_seam_gap_m,
                                      c.self_intersections,
                                      DrapeState::Source::output,
-                                     options.final_edge_cm};
+                                     options.final_edge_cm,
+                                     fs.drape.message};
             } else {
                 g.pattern = garment::make_pattern(g.sizing);
             }
@@ -517,7 +518,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                         g.drape = DrapeState{c.usable,           c.converged,
                                              c.penetration_max_m, c.seam_gap_max_m,
                                              c.self_intersections, DrapeState::Source::search,
-                                             options.search_edge_cm};
+                                             options.search_edge_cm,  std::string{}};
                     }
                 } catch (const InvalidInput& e) {
                     // The search mesh refuses the recovered sizing (it was evaluated there, so

@@ -71,6 +71,7 @@ ReportContent recovery_report(const cv::Mat& photo, const RecoveryResult& r, con
         drape += " (penetration " + num(1000 * g.drape.penetration_max_m, 1) + " mm, seam gap " +
                  num(1000 * g.drape.seam_gap_max_m, 1) + " mm, " + std::to_string(g.drape.self_intersections) +
                  " self-intersections)";
+        if (!g.drape.message.empty()) drape += ": " + g.drape.message;
         if (g.drape.source == DrapeState::Source::search)
             drape += "; the output drape was not usable: the search's re-drape at " + num(g.drape.edge_cm, 1) +
                      " cm edges is shown";

@@ -267,8 +267,10 @@ TryOnSummary tryon(const body::BodyModel& model, const TryOnInputs& in, const Tr
             const garment::GarmentStateCheck& c = dressed.checks[i];
             const bool within = c.max_penetration_m <= ds.drape.penetration_tolerance_m &&
                                 c.max_seam_gap_m < ds.drape.seam_gap_tolerance_m && c.self_intersections == 0;
-            g.drape = DrapeState{ds.usable() && within, ds.drape.converged, c.max_penetration_m, c.max_seam_gap_m,
-                                 c.self_intersections};
+            g.drape = DrapeState{ds.usable() && within,  ds.drape.converged,
+                                 c.max_penetration_m,     c.max_seam_gap_m,
+                                 c.self_intersections,    DrapeState::Source::output,
+                                 options.edge_cm,         ds.drape.message};
         }
 
         // ---- 4. A photo target: the garments over the photo, and where the own garment shows.

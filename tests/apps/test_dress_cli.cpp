@@ -31,6 +31,8 @@ TEST_CASE("drape dress drapes a skirt and writes the summary", "[apps][dress]") 
     CHECK(s["seam_gap_max_m"].get<double>() < 1e-3);
     CHECK(s["penetration_max_m"].get<double>() <= 1e-3);
     CHECK(s["self_intersections"].get<int>() >= 0);
+    CHECK(s["crossings_repaired"].get<int>() >= 0);
+    CHECK(s["contact_stiffened"].is_boolean());
     CHECK(s["vertices"].get<int>() > 50);
     CHECK(s["seconds"].get<double>() > 0);
     for (const char* key : {"l1", "r1", "r2", "alpha"}) CHECK(s["sizing"][key].is_number());

@@ -136,6 +136,7 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     CHECK(result["output_drape"] == "output");
     CHECK(rg["drape"]["mesh"] == "output");
     CHECK(rg["drape"]["edge_cm"].get<double>() == 5.0);
+    CHECK(rg["drape"]["message"].is_string());
 
     // The same recovery with the search's re-drapes as the result (no output drape): the
     // search is the same run for run (a fixed seed, threads bit-identical to serial), so the

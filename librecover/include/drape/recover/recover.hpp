@@ -169,6 +169,11 @@ struct DrapeState {
     /// not checked). `edge_cm` is the mesh's target edge.
     enum class Source { output, search } source = Source::output;
     double edge_cm = 0;
+    /// The output drape's own account (DrapeSummary::message): why it is not at rest ("seams
+    /// not closed or cloth not at rest after 600 steps"), what a repair at rest could not
+    /// fix; shared by the garments of an outfit, which are draped together. Empty when the
+    /// drape ended without a remark, and for the search's re-drapes.
+    std::string message;
 };
 
 struct RecoveredGarment {
