@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <utility>
 
 namespace drape::garment::detail {
@@ -152,7 +154,7 @@ void DrapeRun::weld_now() {
     try {
         w.mesh.validate();
     } catch (const InvalidInput& e) {
-        notes_ += std::string(notes_.empty() ? "" : "; ") + "seams not welded (" + e.what() + ")";
+        note(std::string("seams not welded (") + e.what() + ")");
         return;
     }
     cloth::Simulator next(std::move(w.mesh), materials_, face_material_, options_.simulator);
@@ -169,6 +171,7 @@ void DrapeRun::weld_now() {
 // caller cancelled (the summary says which).
 bool DrapeRun::run_steps(int budget, int min_steps, DrapePhase phase) {
     settled_ = false;
+    rest_report_.reset();
     for (int k = 0; k < budget; ++k) {
         // The body moves once the seams are closed.
         const bool in_motion = moving_ && motion_steps_ < motion_total_ && summary_.steps_to_close_seams >= 0;
@@ -255,6 +258,7 @@ bool DrapeRun::close_seams_and_settle() {
 }
 
 void DrapeRun::solve_static() {
+    rest_report_.reset();
     const Eigen::MatrixX3d before = sim_.positions();
     // The static solve gets its own Newton budget: a twin simulator at the settled state.
     cloth::SimulatorOptions static_options = options_.simulator;
@@ -288,14 +292,52 @@ void DrapeRun::solve_static() {
     }
 }
 
+void DrapeRun::note(const std::string& text) { notes_ += std::string(notes_.empty() ? "" : "; ") + text; }
+
+const cloth::ContactReport& DrapeRun::rest_report() {
+    if (!rest_report_) rest_report_ = sim_.contact_report();
+    return *rest_report_;
+}
+
+bool DrapeRun::retry_at_rest(const cloth::SimulatorOptions& options, const Eigen::MatrixX3d& positions,
+                             const Eigen::MatrixX3d& velocities,
+                             const std::function<bool(const cloth::ContactReport&)>& better, std::string* why) {
+    // The same cloth (welded or not), stitches and body in a fresh simulator; the one at rest
+    // is kept aside, to come back whole if the retry is not better.
+    cloth::ClothMesh m = sim_.mesh();
+    m.positions = positions;
+    cloth::Simulator next(std::move(m), materials_, face_material_, options);
+    next.set_obstacle(*sim_.obstacle());
+    next.set_stitches(sim_.stitches());
+    next.set_velocities(velocities);
+    const DrapeSummary kept = summary_;
+    std::optional<cloth::ContactReport> kept_report = std::move(rest_report_);
+    cloth::Simulator previous = std::exchange(sim_, std::move(next));
+    rest_report_.reset();
+    const bool ran = run_steps(options_.fallback_steps, 1, DrapePhase::settling);
+    if (!ran && summary_.termination == DrapeTermination::cancelled) return false;  // the state reached, as cancelled
+    const cloth::ContactReport& after = rest_report();
+    const bool at_rest = ran && settled_;
+    if (at_rest && after.max_stitch_gap_m < options_.seam_gap_tolerance_m && better(after)) return true;
+    if (why)
+        *why = std::to_string(after.self_intersections) + " crossings and " +
+               std::to_string(1000 * after.max_penetration_m) + " mm in the body" + (at_rest ? "" : ", not at rest");
+    const int steps = summary_.steps;
+    sim_ = std::move(previous);
+    rest_report_ = std::move(kept_report);
+    summary_ = kept;
+    summary_.steps = steps;  // the steps were taken
+    settled_ = true;
+    return false;
+}
+
 void DrapeRun::repair_crossings() {
     if (!options_.repair_crossings || options_.fallback_steps < 1) return;
-    const cloth::ContactReport before = sim_.contact_report();
+    const cloth::ContactReport before = rest_report();
     if (before.self_intersections == 0) return;
     Eigen::MatrixX3d X = garment_positions(sim_.positions());
     const cloth::Obstacle& body = *sim_.obstacle();
     const UntangleSummary u = untangle_garment(mesh_, body.positions(), body.faces(), UntangleOptions{}, X);
-    auto note = [&](const std::string& t) { notes_ += std::string(notes_.empty() ? "" : "; ") + t; };
     if (u.self_intersections >= before.self_intersections) {
         note("the " + std::to_string(before.self_intersections) + " crossings at rest could not be untangled (" +
              std::to_string(u.self_intersections) + " left)");
@@ -304,73 +346,46 @@ void DrapeRun::repair_crossings() {
     // Stitched vertices moved together: each simulation vertex takes its garment vertices' place.
     Eigen::MatrixX3d x = sim_.positions();
     for (int v = 0; v < nv_; ++v) x.row(sim_vertex_[size_t(v)]) = X.row(v);
-    const Eigen::MatrixX3d kept_x = sim_.positions();
-    const Eigen::MatrixX3d kept_v = sim_.velocities();
-    const DrapeSummary kept = summary_;
-    sim_.set_positions(x);
-    sim_.set_velocities(Eigen::MatrixX3d::Zero(x.rows(), 3));
-    const bool ran = run_steps(options_.fallback_steps, 1, DrapePhase::settling);
-    if (!ran && summary_.termination == DrapeTermination::cancelled) return;
-    const cloth::ContactReport after = sim_.contact_report();
-    const bool at_rest = ran && settled_;
-    if (at_rest && after.self_intersections < before.self_intersections &&
-        after.max_penetration_m <= std::max(before.max_penetration_m, options_.penetration_tolerance_m) &&
-        after.max_stitch_gap_m < options_.seam_gap_tolerance_m) {
-        summary_.crossings_repaired = before.self_intersections - after.self_intersections;
-        return;
-    }
-    const int steps = summary_.steps;
-    sim_.set_positions(kept_x);
-    sim_.set_velocities(kept_v);
-    summary_ = kept;
-    summary_.steps = steps;
-    settled_ = true;
-    note("untangled, the cloth came to rest with " + std::to_string(after.self_intersections) + " crossings and " +
-         std::to_string(1000 * after.max_penetration_m) + " mm in the body" + (at_rest ? "" : ", not at rest") +
-         " (before: " + std::to_string(before.self_intersections) + "): the rest state before is kept");
+    std::string why;
+    const bool kept = retry_at_rest(
+        options_.simulator, x, Eigen::MatrixX3d::Zero(x.rows(), 3),
+        [&](const cloth::ContactReport& after) {
+            return after.self_intersections < before.self_intersections &&
+                   after.max_penetration_m <= std::max(before.max_penetration_m, options_.penetration_tolerance_m);
+        },
+        &why);
+    if (kept)
+        summary_.crossings_repaired = before.self_intersections - rest_report().self_intersections;
+    else if (summary_.termination != DrapeTermination::cancelled)
+        note("untangled, the cloth came to rest with " + why + " (before: " +
+             std::to_string(before.self_intersections) + " crossings): the rest state before is kept");
 }
 
 void DrapeRun::stiffen_contact() {
     if (!(options_.contact_stiffening > 1) || options_.fallback_steps < 1) return;
-    const cloth::ContactReport before = sim_.contact_report();
+    const cloth::ContactReport before = rest_report();
     if (before.max_penetration_m <= options_.penetration_tolerance_m) return;
-    // The same cloth (welded or not), state, stitches and body, behind the surface stiffer.
     cloth::SimulatorOptions stiff = options_.simulator;
     stiff.contact_inside_stiffness_factor *= options_.contact_stiffening;
-    cloth::ClothMesh m = sim_.mesh();
-    m.positions = sim_.positions();
-    cloth::Simulator next(std::move(m), materials_, face_material_, stiff);
-    next.set_obstacle(*sim_.obstacle());
-    next.set_stitches(sim_.stitches());
-    next.set_velocities(sim_.velocities());
-    const DrapeSummary kept = summary_;
-    cloth::Simulator previous = std::exchange(sim_, std::move(next));
-    const bool ran = run_steps(options_.fallback_steps, 1, DrapePhase::settling);
-    if (!ran && summary_.termination == DrapeTermination::cancelled) return;  // the state reached, as cancelled
-    const cloth::ContactReport after = sim_.contact_report();
-    if (ran && settled_ && after.max_penetration_m < before.max_penetration_m &&
-        after.self_intersections <= before.self_intersections &&
-        after.max_stitch_gap_m < options_.seam_gap_tolerance_m) {
+    std::string why;
+    const bool kept = retry_at_rest(
+        stiff, sim_.positions(), sim_.velocities(),
+        [&](const cloth::ContactReport& after) {
+            return after.max_penetration_m < before.max_penetration_m &&
+                   after.self_intersections <= before.self_intersections;
+        },
+        &why);
+    if (kept)
         summary_.contact_stiffened = true;
-        return;
-    }
-    const bool at_rest = ran && settled_;
-    const int steps = summary_.steps;
-    sim_ = std::move(previous);
-    summary_ = kept;
-    summary_.steps = steps;  // the steps were taken
-    settled_ = true;
-    notes_ += std::string(notes_.empty() ? "" : "; ") + "a stiffer contact left the cloth " +
-              std::to_string(1000 * after.max_penetration_m) + " mm in the body (" +
-              std::to_string(after.self_intersections) + " self-intersections" + (at_rest ? "" : ", not at rest") +
-              "): the rest state before it is kept";
+    else if (summary_.termination != DrapeTermination::cancelled)
+        note("a stiffer contact left the cloth with " + why + ": the rest state before it is kept");
 }
 
 void DrapeRun::measure(Eigen::MatrixX3d& out_positions) {
     // A cancelled drape returns at once: the contact report (self-intersections above all)
     // would cost a step's time, for figures of a state nobody asked for.
     if (summary_.termination != DrapeTermination::cancelled) {
-        const cloth::ContactReport r = sim_.contact_report();
+        const cloth::ContactReport& r = rest_report();
         summary_.seam_gap_max_m = r.max_stitch_gap_m;
         summary_.penetration_max_m = r.max_penetration_m;
         summary_.vertices_inside = r.vertices_inside;
@@ -384,9 +399,9 @@ void DrapeRun::measure(Eigen::MatrixX3d& out_positions) {
     const double body_sink = ((body_path_.back() - body_path_.front()) * down).mean();
     summary_.mean_drop_m = garment_sink - body_sink;
     if (summary_.mean_drop_m > options_.max_mean_drop_m)
-        notes_ += std::string(notes_.empty() ? "" : "; ") + "the garment slid down the body: its vertices sank " +
-                  std::to_string(100 * summary_.mean_drop_m) + " cm on average (at most " +
-                  std::to_string(100 * options_.max_mean_drop_m) + " cm)";
+        note("the garment slid down the body: its vertices sank " + std::to_string(100 * summary_.mean_drop_m) +
+             " cm on average (at most " +
+             std::to_string(100 * options_.max_mean_drop_m) + " cm)");
     if (!notes_.empty()) summary_.message += (summary_.message.empty() ? "" : "; ") + notes_;
 }
 

@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +94,19 @@ public:
 
 private:
     bool run_steps(int budget, int min_steps, DrapePhase phase);
+    /// Appends to the remarks that end up in the summary's message.
+    void note(const std::string& text);
+    /// The contact report of the current state, computed once per state (it counts the
+    /// cloth's crossings: the repairs at rest and measure() share it).
+    const cloth::ContactReport& rest_report();
+    /// One try at a better rest state: a fresh simulator with `options` from `positions`
+    /// and `velocities` (simulation vertices) is stepped to rest (at most fallback_steps);
+    /// kept if at rest with the seams closed and `better` says so. Else the simulator at
+    /// rest and the summary (but its step count) come back, and `why` says what the try
+    /// reached. false also when cancelled (the summary says so, the state reached is kept).
+    bool retry_at_rest(const cloth::SimulatorOptions& options, const Eigen::MatrixX3d& positions,
+                       const Eigen::MatrixX3d& velocities,
+                       const std::function<bool(const cloth::ContactReport&)>& better, std::string* why);
     void weld_now();
     Eigen::MatrixX3d garment_positions(const Eigen::MatrixX3d& x) const;
 
@@ -114,6 +129,7 @@ private:
     bool weld_tried_ = false;
     bool settled_ = false;
     Eigen::MatrixX3d progress_positions_;
+    std::optional<cloth::ContactReport> rest_report_;  // of the current state, once asked for
 };
 
 }  // namespace drape::garment::detail
