@@ -31,6 +31,114 @@ Region region_of_joint(int j) {
     return kOther;
 }
 
+
+// The pose with one arm turned at the shoulder by `Q` (a world rotation about the shoulder).
+body::Pose turned_arm(const body::Pose& pose, int shoulder, const Eigen::Matrix3d& parent_world,
+                      const Eigen::Matrix3d& Q) {
+    body::Pose p = pose;
+    p.rotations.row(shoulder) = body::rotated_in_world(pose.rotations.row(shoulder).transpose(), parent_world, Q).transpose();
+    return p;
+}
+
+// clear_arms_from_trunk with a view direction: per arm, the turns on the grid (outward turn
+// in the image plane a, swing in depth f) are tried in order of the image displacement of
+// the elbow and wrist they cause; the first that leaves the arm clear of the trunk is kept.
+body::Pose clear_arms_in_view(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
+                              const ArmClearanceOptions& options, const std::vector<int>& face_region,
+                              ArmClearanceSummary& s) {
+    using body::Joint;
+    using body::index;
+    const Eigen::Vector3d v = options.view_direction.normalized();
+    auto faces_of = [&](int region) {
+        std::vector<int> rows;
+        for (size_t f = 0; f < face_region.size(); ++f)
+            if (face_region[f] == region) rows.push_back(int(f));
+        Eigen::MatrixX3i F(Eigen::Index(rows.size()), 3);
+        for (size_t i = 0; i < rows.size(); ++i) F.row(Eigen::Index(i)) = model.faces.row(rows[i]);
+        return F;
+    };
+    const Eigen::MatrixX3i trunk = faces_of(kTrunk);
+    const std::array<Eigen::MatrixX3i, 2> arm_faces = {faces_of(kRightArm), faces_of(kLeftArm)};
+    auto crossings = [&](const body::Pose& p, size_t arm) {
+        ++s.trials;
+        const Eigen::MatrixX3d X = body::pose_body(model, shaped, p).vertices;
+        return cloth::count_intersections(X, arm_faces[arm], X, trunk);
+    };
+    auto in_image = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return d - d.dot(v) * v; };
+    const body::PosedSkeleton k = body::forward_kinematics(shaped.joints, pose);
+    const std::array<std::array<Joint, 3>, 2> chains = {
+        std::array<Joint, 3>{Joint::right_shoulder, Joint::right_elbow, Joint::right_wrist},
+        std::array<Joint, 3>{Joint::left_shoulder, Joint::left_elbow, Joint::left_wrist}};
+    body::Pose out = pose;
+    for (size_t arm = 0; arm < 2; ++arm) {
+        const int sj = index(chains[arm][0]);
+        const Eigen::Vector3d S = k.joints.row(sj).transpose();
+        const Eigen::Vector3d E = k.joints.row(index(chains[arm][1])).transpose() - S;
+        const Eigen::Vector3d W = k.joints.row(index(chains[arm][2])).transpose() - S;
+        const Eigen::Matrix3d G = k.global[size_t(body::kJointParents[size_t(sj)])].linear();
+        const int before = crossings(pose, arm);
+        s.crossings_before += before;
+        if (before == 0) continue;
+        // Depth swing axis: across the upper arm and the view (the parent's x if the upper
+        // arm points along the view). Outward: the image-plane turn that takes the elbow
+        // away from the neck, on the shoulder's side.
+        Eigen::Vector3d across = E.normalized().cross(v);
+        if (across.norm() < 1e-3) across = G.col(0).cross(v);
+        if (across.norm() < 1e-9) across = G.col(0);
+        across.normalize();
+        // + depth = towards the viewer (along v).
+        if ((across.cross(E)).dot(v) < 0) across = -across;
+        const Eigen::Vector3d side = in_image(S - k.joints.row(index(Joint::neck)).transpose());
+        const double outward = (v.cross(E)).dot(side) >= 0 ? 1.0 : -1.0;
+        struct Turn {
+            double a, f, cost;
+            Eigen::Matrix3d Q;
+        };
+        std::vector<Turn> turns;
+        const double rad = kPi / 180;
+        for (double a = 0; a <= options.max_degrees + 1e-9; a += options.step_degrees)
+            for (double f = -options.max_depth_degrees; f <= options.max_depth_degrees + 1e-9; f += options.depth_step_degrees) {
+                const double fr = std::abs(f) < 1e-9 ? 0.0 : f;
+                const Eigen::Matrix3d Q = (Eigen::AngleAxisd(outward * a * rad, v) * Eigen::AngleAxisd(fr * rad, across)).toRotationMatrix();
+                const double cost = in_image(Q * E - E).norm() + in_image(Q * W - W).norm();
+                turns.push_back({a, fr, cost, Q});
+            }
+        // Cheapest first; ties: the smaller turn, then towards the viewer.
+        std::stable_sort(turns.begin(), turns.end(), [](const Turn& x, const Turn& y) {
+            if (std::abs(x.cost - y.cost) > 1e-12) return x.cost < y.cost;
+            if (x.a + std::abs(x.f) != y.a + std::abs(y.f)) return x.a + std::abs(x.f) < y.a + std::abs(y.f);
+            return x.f > y.f;
+        });
+        const Turn* chosen = nullptr;
+        int left = before, tried = 0;
+        for (const Turn& t : turns) {
+            if (t.a == 0 && t.f == 0) continue;
+            if (tried++ >= options.max_trials) break;
+            const int n = crossings(turned_arm(out, sj, G, t.Q), arm);
+            if (n == 0) {
+                chosen = &t;
+                left = 0;
+                break;
+            }
+        }
+        if (!chosen) {
+            // Not cleared within the trials: the plain outward turn as far as allowed.
+            const Eigen::Matrix3d Q = Eigen::AngleAxisd(outward * options.max_degrees * rad, v).toRotationMatrix();
+            out = turned_arm(out, sj, G, Q);
+            left = crossings(out, arm);
+            (arm == 0 ? s.right_degrees : s.left_degrees) = options.max_degrees;
+            s.image_shift_m += in_image(Q * E - E).norm() + in_image(Q * W - W).norm();
+        } else {
+            out = turned_arm(out, sj, G, chosen->Q);
+            (arm == 0 ? s.right_degrees : s.left_degrees) = chosen->a;
+            (arm == 0 ? s.right_depth_degrees : s.left_depth_degrees) = chosen->f;
+            s.image_shift_m += chosen->cost;
+        }
+        s.crossings_after += left;
+    }
+    return out;
+}
+
 }  // namespace
 
 bool ArmClearanceOptions::is_valid(std::string* why) const {
@@ -42,6 +150,16 @@ bool ArmClearanceOptions::is_valid(std::string* why) const {
         return fail("ArmClearanceOptions::step_degrees = " + std::to_string(step_degrees) + " must be in (0, 10]");
     if (!(max_degrees >= 0 && max_degrees <= 60))
         return fail("ArmClearanceOptions::max_degrees = " + std::to_string(max_degrees) + " must be in [0, 60]");
+    if (!view_direction.allFinite())
+        return fail("ArmClearanceOptions::view_direction must be finite");
+    if (!(depth_step_degrees > 0 && depth_step_degrees <= 30))
+        return fail("ArmClearanceOptions::depth_step_degrees = " + std::to_string(depth_step_degrees) +
+                    " must be in (0, 30]");
+    if (!(max_depth_degrees >= 0 && max_depth_degrees <= 90))
+        return fail("ArmClearanceOptions::max_depth_degrees = " + std::to_string(max_depth_degrees) +
+                    " must be in [0, 90]");
+    if (max_trials < 1 || max_trials > 10000)
+        return fail("ArmClearanceOptions::max_trials = " + std::to_string(max_trials) + " must be in [1, 10000]");
     return true;
 }
 
@@ -49,7 +167,11 @@ std::string ArmClearanceSummary::brief_report() const {
     std::ostringstream os;
     os << (clear() ? "arms clear of the trunk" : "arms still cross the trunk") << ": " << crossings_before
        << " -> " << crossings_after << " crossing arm/trunk triangle pairs, right arm raised " << right_degrees
-       << " deg, left " << left_degrees << " deg, " << trials << " trials";
+       << " deg, left " << left_degrees << " deg";
+    if (right_depth_degrees != 0 || left_depth_degrees != 0 || image_shift_m != 0)
+        os << ", swung in depth right " << right_depth_degrees << " deg, left " << left_depth_degrees
+           << " deg, elbows and wrists moved " << image_shift_m * 100 << " cm in the image";
+    os << ", " << trials << " trials";
     return os.str();
 }
 
@@ -90,8 +212,13 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
         if (r == vertex_region[size_t(model.faces(f, 1))] && r == vertex_region[size_t(model.faces(f, 2))])
             face_region[size_t(f)] = r;
     }
-    // Crossings of each arm with the trunk in a pose.
     ArmClearanceSummary s;
+    if (options.view_direction.norm() > 0) {
+        body::Pose p = clear_arms_in_view(model, shaped, pose, options, face_region, s);
+        if (summary) *summary = s;
+        return p;
+    }
+    // Crossings of each arm with the trunk in a pose.
     auto crossings = [&](const body::Pose& p) {
         ++s.trials;
         const Eigen::MatrixX3d X = body::pose_body(model, shaped, p).vertices;
