@@ -51,6 +51,23 @@ nlohmann::json summary_json(const recover::RecoverSummary& s) {
                          {"total", s.seconds}}}};
 }
 
+// How the draping pose (body.pose) differs from the fit's (body.fit_pose), per arm.
+nlohmann::json arms_json(const recover::RecoveryResult& r) {
+    const garment::ArmLoweringSummary& l = r.arms_lowered;
+    const garment::ArmClearanceSummary& c = r.arms_cleared;
+    auto arm = [](double lowered, double elevation, double outward, double depth) {
+        return nlohmann::json{{"elevation_deg", elevation},
+                              {"lowered_deg", lowered},
+                              {"turned_out_deg", outward},
+                              {"swung_in_depth_deg", depth}};
+    };
+    return {{"right", arm(l.right_lowered_degrees, l.right_elevation_degrees, c.right_degrees, c.right_depth_degrees)},
+            {"left", arm(l.left_lowered_degrees, l.left_elevation_degrees, c.left_degrees, c.left_depth_degrees)},
+            {"trunk_crossings_before", c.crossings_before},
+            {"trunk_crossings_after", c.crossings_after},
+            {"image_shift_m", c.image_shift_m}};
+}
+
 nlohmann::json garment_result_json(const recover::RecoveredGarment& g) {
     nlohmann::json material = material_to_json(g.material, g.base_fabric);
     material["nearest_fabric"] = g.nearest_fabric;
@@ -125,6 +142,7 @@ nlohmann::json recovery_json(const std::string& image, const recover::RecoverInp
              {{"params", to_json(result.fit.shape)},
               {"pose", to_json(result.pose)},
               {"fit_pose", to_json(result.fit.pose)},
+              {"arms", arms_json(result)},
               {"camera", to_json(result.fit.camera)}}},
             {"garments", garments},
             {"summary", summary_json(s)}};

@@ -26,6 +26,9 @@ garment::DressOutfitOptions CandidateDraper::options_at(double edge_cm, bool cle
     o.drape.min_steps = std::min(o.drape.min_steps, o.drape.max_steps);
     o.drape.max_untangle_steps = std::min(o.drape.max_untangle_steps, options_.max_drape_steps / 3);
     o.clear_arms = clear_arms;
+    // The photo's camera is on +Z: arms are cleared of the trunk by the turn that changes
+    // their image least (an arm in front of the trunk moves further in front, not out).
+    o.arm_clearance.view_direction = Eigen::Vector3d::UnitZ();
     return o;
 }
 

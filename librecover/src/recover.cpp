@@ -271,14 +271,15 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
         // Layer order (outfit_layers: bottom, then the top over its waistband).
         // Raised arms lowered (they would drag a top up by its armholes), then the arms
         // cleared of the trunk by the dressing.
-        const body::Pose drape_pose =
-            garment::lower_raised_arms(model, out.shaped, out.fit.pose, options.max_arm_elevation_degrees);
+        const body::Pose drape_pose = garment::lower_raised_arms(model, out.shaped, out.fit.pose,
+                                                                 options.max_arm_elevation_degrees, &out.arms_lowered);
         CandidateDraper draper(model, out.shaped, drape_pose, options);
         const garment::DressOutfitSummary dressed = draper.dress(requests);
         summary.seconds_dress = since(ts);
         if (dressed.termination == garment::DressOutfitTermination::meshing_failed)
             return finish(RecoverTermination::drape_failed, dressed.message);
         out.pose = draper.outfit().pose;
+        out.arms_cleared = draper.outfit().arms;
         out.body_vertices = draper.outfit().body_vertices;
 
         // ---- 4. Targets: each garment's silhouette and what may hide it in the photo.

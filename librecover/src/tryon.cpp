@@ -237,6 +237,9 @@ TryOnSummary tryon(const body::BodyModel& model, const TryOnInputs& in, const Tr
         o.mesh.target_edge_cm = options.edge_cm;
         o.drape.max_steps = std::max(600, options.max_drape_steps);
         o.drape.min_steps = std::min(o.drape.min_steps, o.drape.max_steps);
+        // Over a photo (camera on +Z) the arms are cleared of the trunk by the turn that
+        // changes their image least, as in recovery.
+        if (photo) o.arm_clearance.view_direction = Eigen::Vector3d::UnitZ();
         bool cancelled = false;
         if (options.on_progress)
             o.drape.on_progress = [&](const garment::DrapeProgress& p) {

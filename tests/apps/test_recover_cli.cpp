@@ -111,6 +111,19 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     const nlohmann::json truth = read_json(scene / "truth.json");
     // The schema of truth.json: every key of truth is in result.
     for (const auto& [key, value] : truth["body"].items()) CHECK(result["body"].contains(key));
+    // How the draping pose differs from the fit's, per arm; arms clear of the trunk in the
+    // A-pose are not turned.
+    const auto& arms = result["body"]["arms"];
+    for (const char* side : {"right", "left"})
+        for (const char* k : {"elevation_deg", "lowered_deg", "turned_out_deg", "swung_in_depth_deg"})
+            CHECK(arms[side][k].is_number());
+    CHECK(arms["trunk_crossings_after"] == 0);
+    if (arms["trunk_crossings_before"] == 0)
+        for (const char* side : {"right", "left"}) {
+            CHECK(arms[side]["turned_out_deg"] == 0.0);
+            CHECK(arms[side]["swung_in_depth_deg"] == 0.0);
+        }
+    CHECK(arms["image_shift_m"].get<double>() >= 0);
     const auto& tg = truth["garments"][0];
     const auto& rg = result["garments"][0];
     for (const auto& [key, value] : tg.items()) CHECK(rg.contains(key));

@@ -217,6 +217,12 @@ struct RecoveryResult {
     body::ShapedBody shaped;
     Eigen::MatrixXd body_vertices;              ///< posed as draped (#B x 3, world metres)
     body::Pose pose;                            ///< the pose draped in (arms cleared if needed)
+    /// How the draping pose differs from the fit's: raised arms lowered to
+    /// RecoverOptions::max_arm_elevation_degrees, then arms that skinning passed into the
+    /// trunk turned clear of it by the turn that changes their image least (seen from the
+    /// camera, +Z: a swing in depth and/or an outward turn; garment::ArmClearanceOptions).
+    garment::ArmLoweringSummary arms_lowered;
+    garment::ArmClearanceSummary arms_cleared;
     std::vector<RecoveredGarment> garments;     ///< inner first
     /// The recovered body and garments projected with the fitted camera, with occlusion, at
     /// the photo's size: 41 (skin) for the body, each garment's class id, 0 elsewhere.
