@@ -75,6 +75,8 @@ body::Pose clear_arms_in_view(const body::BodyModel& model, const body::ShapedBo
         const Eigen::Vector3d S = k.joints.row(sj).transpose();
         const Eigen::Vector3d E = k.joints.row(index(chains[arm][1])).transpose() - S;
         const Eigen::Vector3d W = k.joints.row(index(chains[arm][2])).transpose() - S;
+        // Image displacement of elbow and wrist under a turn Q at the shoulder.
+        auto image_shift = [&](const Eigen::Matrix3d& Q) { return in_image(Q * E - E).norm() + in_image(Q * W - W).norm(); };
         const Eigen::Matrix3d G = k.global[size_t(body::kJointParents[size_t(sj)])].linear();
         const int before = crossings(pose, arm);
         s.crossings_before += before;
@@ -100,8 +102,7 @@ body::Pose clear_arms_in_view(const body::BodyModel& model, const body::ShapedBo
             for (double f = -options.max_depth_degrees; f <= options.max_depth_degrees + 1e-9; f += options.depth_step_degrees) {
                 const double fr = std::abs(f) < 1e-9 ? 0.0 : f;
                 const Eigen::Matrix3d Q = (Eigen::AngleAxisd(outward * a * rad, v) * Eigen::AngleAxisd(fr * rad, across)).toRotationMatrix();
-                const double cost = in_image(Q * E - E).norm() + in_image(Q * W - W).norm();
-                turns.push_back({a, fr, cost, Q});
+                turns.push_back({a, fr, image_shift(Q), Q});
             }
         // Cheapest first; ties: the smaller turn, then towards the viewer.
         std::stable_sort(turns.begin(), turns.end(), [](const Turn& x, const Turn& y) {
@@ -127,7 +128,7 @@ body::Pose clear_arms_in_view(const body::BodyModel& model, const body::ShapedBo
             out = turned_arm(out, sj, G, Q);
             left = crossings(out, arm);
             (arm == 0 ? s.right_degrees : s.left_degrees) = options.max_degrees;
-            s.image_shift_m += in_image(Q * E - E).norm() + in_image(Q * W - W).norm();
+            s.image_shift_m += image_shift(Q);
         } else {
             out = turned_arm(out, sj, G, chosen->Q);
             (arm == 0 ? s.right_degrees : s.left_degrees) = chosen->a;
