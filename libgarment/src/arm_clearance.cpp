@@ -31,6 +31,37 @@ Region region_of_joint(int j) {
     return kOther;
 }
 
+// The body's trunk and arm faces (a face belongs to a region when its three vertices'
+// dominant joints all do), and the crossings of an arm with the trunk in a pose: the one
+// count both clearance paths use.
+struct ArmTrunkFaces {
+    Eigen::MatrixX3i trunk;
+    std::array<Eigen::MatrixX3i, 2> arms;  // right, left
+
+    explicit ArmTrunkFaces(const body::BodyModel& model) {
+        std::vector<int> vertex_region;
+        for (const int joint : body::dominant_joints(model))
+            vertex_region.push_back(joint >= 0 ? region_of_joint(joint) : kOther);
+        std::array<std::vector<int>, 4> rows;
+        for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
+            const int r = vertex_region[size_t(model.faces(f, 0))];
+            if (r == vertex_region[size_t(model.faces(f, 1))] && r == vertex_region[size_t(model.faces(f, 2))])
+                rows[size_t(r)].push_back(int(f));
+        }
+        auto gather = [&](int region) {
+            const std::vector<int>& r = rows[size_t(region)];
+            Eigen::MatrixX3i F(Eigen::Index(r.size()), 3);
+            for (size_t i = 0; i < r.size(); ++i) F.row(Eigen::Index(i)) = model.faces.row(r[i]);
+            return F;
+        };
+        trunk = gather(kTrunk);
+        arms = {gather(kRightArm), gather(kLeftArm)};
+    }
+    // Intersecting (arm face, trunk face) pairs of arm 0 (right) or 1 (left) at positions X.
+    int crossings(const Eigen::MatrixX3d& X, size_t arm) const {
+        return cloth::count_intersections(X, arms[arm], X, trunk);
+    }
+};
 
 // The pose with one arm turned at the shoulder by `Q` (a world rotation about the shoulder).
 body::Pose turned_arm(const body::Pose& pose, int shoulder, const Eigen::Matrix3d& parent_world,
@@ -44,25 +75,14 @@ body::Pose turned_arm(const body::Pose& pose, int shoulder, const Eigen::Matrix3
 // in the image plane a, swing in depth f) are tried in order of the image displacement of
 // the elbow and wrist they cause; the first that leaves the arm clear of the trunk is kept.
 body::Pose clear_arms_in_view(const body::BodyModel& model, const body::ShapedBody& shaped, const body::Pose& pose,
-                              const ArmClearanceOptions& options, const std::vector<int>& face_region,
+                              const ArmClearanceOptions& options, const ArmTrunkFaces& faces,
                               ArmClearanceSummary& s) {
     using body::Joint;
     using body::index;
     const Eigen::Vector3d v = options.view_direction.normalized();
-    auto faces_of = [&](int region) {
-        std::vector<int> rows;
-        for (size_t f = 0; f < face_region.size(); ++f)
-            if (face_region[f] == region) rows.push_back(int(f));
-        Eigen::MatrixX3i F(Eigen::Index(rows.size()), 3);
-        for (size_t i = 0; i < rows.size(); ++i) F.row(Eigen::Index(i)) = model.faces.row(rows[i]);
-        return F;
-    };
-    const Eigen::MatrixX3i trunk = faces_of(kTrunk);
-    const std::array<Eigen::MatrixX3i, 2> arm_faces = {faces_of(kRightArm), faces_of(kLeftArm)};
     auto crossings = [&](const body::Pose& p, size_t arm) {
         ++s.trials;
-        const Eigen::MatrixX3d X = body::pose_body(model, shaped, p).vertices;
-        return cloth::count_intersections(X, arm_faces[arm], X, trunk);
+        return faces.crossings(body::pose_body(model, shaped, p).vertices, arm);
     };
     auto in_image = [&](const Eigen::Vector3d& d) -> Eigen::Vector3d { return d - d.dot(v) * v; };
     const body::PosedSkeleton k = body::forward_kinematics(shaped.joints, pose);
@@ -204,36 +224,18 @@ body::Pose clear_arms_from_trunk(const body::BodyModel& model, const body::Shape
     require(shaped.vertices.rows() == model.vertex_count() && shaped.vertices.cols() == 3,
             "clear_arms_from_trunk: the shaped body has ", shaped.vertices.rows(), " vertices, the model ",
             model.vertex_count());
-    // Region of each face: that of its vertices' dominant joints when all three agree.
-    std::vector<int> vertex_region;
-    for (const int joint : body::dominant_joints(model)) vertex_region.push_back(joint >= 0 ? region_of_joint(joint) : kOther);
-    std::vector<int> face_region(size_t(model.faces.rows()), kOther);
-    for (Eigen::Index f = 0; f < model.faces.rows(); ++f) {
-        const int r = vertex_region[size_t(model.faces(f, 0))];
-        if (r == vertex_region[size_t(model.faces(f, 1))] && r == vertex_region[size_t(model.faces(f, 2))])
-            face_region[size_t(f)] = r;
-    }
+    const ArmTrunkFaces faces(model);
     ArmClearanceSummary s;
     if (options.view_direction.norm() > 0) {
-        body::Pose p = clear_arms_in_view(model, shaped, pose, options, face_region, s);
+        body::Pose p = clear_arms_in_view(model, shaped, pose, options, faces, s);
         if (summary) *summary = s;
         return p;
     }
-    // Crossings of each arm with the trunk in a pose.
+    // Crossings of each arm (right, left) with the trunk in a pose.
     auto crossings = [&](const body::Pose& p) {
         ++s.trials;
         const Eigen::MatrixX3d X = body::pose_body(model, shaped, p).vertices;
-        std::vector<std::pair<int, int>> pairs;
-        cloth::count_self_intersections(X, model.faces, &pairs);
-        std::array<int, 2> n{0, 0};  // right, left
-        for (const auto& [a, b] : pairs) {
-            const int ra = face_region[size_t(a)], rb = face_region[size_t(b)];
-            for (int arm = 0; arm < 2; ++arm) {
-                const int r = arm == 0 ? kRightArm : kLeftArm;
-                if ((ra == r && rb == kTrunk) || (rb == r && ra == kTrunk)) ++n[size_t(arm)];
-            }
-        }
-        return n;
+        return std::array<int, 2>{faces.crossings(X, 0), faces.crossings(X, 1)};
     };
     auto raised = [&](double right_deg, double left_deg) { return raise_arms(pose, right_deg, left_deg); };
     std::array<int, 2> n = crossings(pose);
