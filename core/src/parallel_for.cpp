@@ -8,18 +8,29 @@ namespace drape::core {
 
 void parallel_for_ranges(int n, int grain, const std::function<void(int begin, int end)>& body) {
     if (n <= 0) return;
+#ifdef DRAPE_SERIAL_LOOPS
+    // ThreadSanitizer builds (CMake option DRAPE_SERIAL_LOOPS): TBB's uninstrumented runtime
+    // would make its work stealing read as races; one range on the calling thread.
+    (void)grain;
+    body(0, n);
+#else
     tbb::parallel_for(tbb::blocked_range<int>(0, n, grain > 0 ? grain : 1),
                       [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+#endif
 }
 
 void parallel_for_chunks(int n, int chunk,
                          const std::function<void(int c, int begin, int end)>& body) {
     if (n <= 0) return;
     const int step = chunk > 0 ? chunk : 1;
+#ifdef DRAPE_SERIAL_LOOPS
+    for (int c = 0; c < chunk_count(n, step); ++c) body(c, c * step, std::min(n, (c + 1) * step));
+#else
     tbb::parallel_for(0, chunk_count(n, step), [&](int c) {
         const int begin = c * step;
         body(c, begin, std::min(n, begin + step));
     });
+#endif
 }
 
 }  // namespace drape::core
