@@ -65,6 +65,7 @@ DrapedCandidate CandidateDraper::drape(int index, const garment::GarmentSizing& 
     d.set_body(body ? *body : body_);
     const garment::SizingDrapeResult r = d.evaluate(sizing);  // InvalidInput: the template or the morph refuses it
     DrapedCandidate c;
+    c.index = index;
     c.mesh = d.mesh();
     c.positions = r.positions.rowwise() + offset_.transpose();
     c.usable = r.usable(d.options().drape);

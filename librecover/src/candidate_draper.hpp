@@ -16,6 +16,7 @@ namespace drape::recover {
 
 /// A candidate drape of garment `index`, with the other garments as they lie around it.
 struct DrapedCandidate {
+    int index = -1;                                  ///< the garment's index in the outfit (inner first)
     garment::GarmentMesh mesh;
     Eigen::MatrixX3d positions;                      ///< #V x 3, world metres
     std::vector<garment::GarmentMesh> other_meshes;  ///< the other garments (occluders)

@@ -40,6 +40,24 @@ garment::CandidateSilhouette silhouette_of(const LabelMask& m, size_t k) {
     return s;
 }
 
+// Moves every vertex along its camera ray by `delta_m` (> 0: away from the camera), which
+// keeps its image: pinhole rays leave the centre (0, 0, distance_m); weak perspective looks
+// down -Z.
+Eigen::MatrixX3d along_camera_rays(const Eigen::MatrixX3d& V, const body::Camera& camera, double delta_m) {
+    Eigen::MatrixX3d out = V;
+    if (camera.model == body::CameraModel::weak_perspective) {
+        out.col(2).array() -= delta_m;
+        return out;
+    }
+    const Eigen::RowVector3d centre(0, 0, camera.distance_m);
+    for (Eigen::Index i = 0; i < out.rows(); ++i) {
+        const Eigen::RowVector3d ray = out.row(i) - centre;
+        const double n = ray.norm();
+        if (n > 0) out.row(i) += (delta_m / n) * ray;
+    }
+    return out;
+}
+
 }  // namespace
 
 garment::SilhouetteTarget silhouette_target(const vision::Segmentation& seg, const vision::LabelTable& table,
@@ -73,8 +91,18 @@ OutfitView::OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body
 
 OutfitMeshes OutfitView::candidate_scene(const DrapedCandidate& c) const {
     OutfitMeshes scene = body_;
-    for (size_t j = 0; j < c.other_meshes.size(); ++j)
-        scene.garments.push_back(outfit_garment(c.other_meshes[j], c.other_positions[j], 2 + static_cast<int>(j), "other"));
+    // The candidate was re-draped on the body alone (garment::SizingDrape does not layer), so
+    // its depth against the other garments as first draped is not the worn one: a top that
+    // hugs the body lies behind the pants it is worn over, they hid its lower part, and a
+    // too-long top was never scored on its hem (tops searched into tunics over tucked-in
+    // blouses; docs/recovery.md, "Layers in the candidate's view"). Each other garment is
+    // moved along its camera rays, which keeps its image, by kLayerDepthM: away from the
+    // camera when worn under the candidate, towards it when worn over.
+    for (size_t j = 0; j < c.other_meshes.size(); ++j) {
+        const bool under = c.index < 0 || (j < c.other_index.size() && c.other_index[j] < c.index);
+        const Eigen::MatrixX3d V = along_camera_rays(c.other_positions[j], camera_, under ? kLayerDepthM : -kLayerDepthM);
+        scene.garments.push_back(outfit_garment(c.other_meshes[j], V, 2 + static_cast<int>(j), "other"));
+    }
     scene.garments.push_back(outfit_garment(c.mesh, c.positions, 1, "candidate"));
     return scene;
 }

@@ -29,13 +29,21 @@ struct OutfitRaster {
     std::vector<garment::CandidateSilhouette> silhouettes;   ///< per garment
 };
 
+/// How far the other garments are moved in depth, along their camera rays, in a candidate's
+/// view (OutfitView::candidate_scene), metres: more than the gap between a garment draped on
+/// the body alone and one layered under it (about 1–3 cm), less than a torso's depth, so
+/// a top's back hanging below its front hem stays behind the pants' front.
+constexpr double kLayerDepthM = 0.05;
+
 class OutfitView {
   public:
     OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body_vertices, const body::Camera& camera,
                int width, int height);
 
     /// The body with the other garments of candidate `c` and the candidate itself last
-    /// (class ids: the candidate 1, the others 2, 3, ...).
+    /// (class ids: the candidate 1, the others 2, 3, ...). The other garments are moved
+    /// along their camera rays by kLayerDepthM, behind the candidate if worn under it, in
+    /// front if worn over it: their images are unchanged, their occlusion follows the layers.
     OutfitMeshes candidate_scene(const DrapedCandidate& c) const;
     /// Candidate `c`'s silhouette with the body and the other garments in front or behind.
     garment::CandidateSilhouette candidate(const DrapedCandidate& c) const;
