@@ -40,13 +40,16 @@ double skirt_flare_deg(double hem_width_cm, double r1, double r2) {
 }
 
 // A top's or dress's length in the image: its top row to its hem, but at most
-// kTopAboveShoulders x the body height above the shoulder line (the joints' row): a mask
-// whose top row lies far above the shoulders holds raised sleeves or arms
-// (fashionista_000005's blouse, hands on the head: 77 cm long in its stroke segmentation
-// for a hip-length blouse). On the hand labels of the 30 shared photos with the arms down
-// the top row lies -0.05 to 0.11 H above the shoulder line (017182's high collar), so the
-// cap leaves those alone (a cap at 0.05 H cut 003792's blouse by 8 cm).
-constexpr double kTopAboveShoulders = 0.12;
+// kTopAboveShoulders x the body height above the shoulder line (the joints' row). A top's
+// highest point, the high shoulder point beside the neck, lies about 0.03 H above the
+// shoulder joints (the shoulder's slope: 4-6 cm at 1.70 m); what a mask shows higher is a
+// collar, or a raised sleeve or arm (fashionista_000005's blouse, hands on the head: 77 cm
+// long in its stroke segmentation for a hip-length blouse; 003792's blouse with one arm
+// raised, 63 cm where the photo shows about 45). The cap was 0.12 H until 2026-11-28, from
+// the top rows of the hand labels (-0.05 to 0.11 H above the shoulder line with the arms
+// down, 017182's high collar the highest); at 0.05 H 003792's tunic over her shorts became
+// a blouse at the waistband (upper IoU 0.41 -> 0.47, shorts 0.02 -> 0.44; docs/recovery.md).
+constexpr double kTopAboveShoulders = 0.05;
 double top_length_px(const vision::GarmentFeatures& f, double body_height_px) {
     if (!std::isfinite(f.hem_below_shoulders_px)) return f.length_px;
     return std::min(f.length_px, f.hem_below_shoulders_px + kTopAboveShoulders * body_height_px);
