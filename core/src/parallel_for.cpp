@@ -23,13 +23,11 @@ void parallel_for_chunks(int n, int chunk,
                          const std::function<void(int c, int begin, int end)>& body) {
     if (n <= 0) return;
     const int step = chunk > 0 ? chunk : 1;
+    auto run = [&](int c) { body(c, c * step, std::min(n, (c + 1) * step)); };
 #ifdef DRAPE_SERIAL_LOOPS
-    for (int c = 0; c < chunk_count(n, step); ++c) body(c, c * step, std::min(n, (c + 1) * step));
+    for (int c = 0, chunks = chunk_count(n, step); c < chunks; ++c) run(c);
 #else
-    tbb::parallel_for(0, chunk_count(n, step), [&](int c) {
-        const int begin = c * step;
-        body(c, begin, std::min(n, begin + step));
-    });
+    tbb::parallel_for(0, chunk_count(n, step), run);
 #endif
 }
 

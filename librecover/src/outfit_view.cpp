@@ -92,16 +92,14 @@ OutfitView::OutfitView(const body::BodyModel& model, const Eigen::MatrixXd& body
 OutfitMeshes OutfitView::candidate_scene(const DrapedCandidate& c) const {
     OutfitMeshes scene = body_;
     // The candidate was re-draped on the body alone (garment::SizingDrape does not layer), so
-    // its depth against the other garments as first draped is not the worn one: a top that
-    // hugs the body lies behind the pants it is worn over, they hid its lower part, and a
-    // too-long top was never scored on its hem (tops searched into tunics over tucked-in
-    // blouses; docs/recovery.md, "Layers in the candidate's view"). Each other garment is
-    // moved along its camera rays, which keeps its image, by kLayerDepthM: away from the
-    // camera when worn under the candidate, towards it when worn over.
+    // its depth against the other garments as first draped need not be the worn one, and the
+    // wrong layer could hide an outline (docs/recovery.md, "Layers in the candidate's view").
+    // Each other garment is moved along its camera rays, which keeps its image, by
+    // kLayerDepthM: away from the camera when worn under the candidate, towards it when over.
     for (size_t j = 0; j < c.other_meshes.size(); ++j) {
-        const bool under = c.index < 0 || (j < c.other_index.size() && c.other_index[j] < c.index);
-        const Eigen::MatrixX3d V = along_camera_rays(c.other_positions[j], camera_, under ? kLayerDepthM : -kLayerDepthM);
-        scene.garments.push_back(outfit_garment(c.other_meshes[j], V, 2 + static_cast<int>(j), "other"));
+        const double delta = c.other_index[j] < c.index ? kLayerDepthM : -kLayerDepthM;
+        scene.garments.push_back(outfit_garment(c.other_meshes[j], along_camera_rays(c.other_positions[j], camera_, delta),
+                                                2 + static_cast<int>(j), "other"));
     }
     scene.garments.push_back(outfit_garment(c.mesh, c.positions, 1, "candidate"));
     return scene;
