@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -183,6 +184,7 @@ struct EvalPhotosArgs {
     int limit = 0;
     std::vector<std::string> names;
     std::string save_dir;
+    std::string rescore_dir;
     RecoverFlags flags;
 };
 
@@ -205,55 +207,105 @@ void run_eval_photos(const EvalPhotosArgs& args) {
     nlohmann::json rows = nlohmann::json::array();
     std::vector<double> ious, seconds, joint_err;
     int runs = 0, recovered = 0, usable = 0;
+    // Per group: precision, recall, top / bottom row and width errors (GroupIou) per photo.
+    // Then the false-positive and false-negative shares (GroupIou's order).
+    constexpr int kLost = 13;
+    std::array<std::array<std::vector<double>, kLost>, 3> lost;
     std::cout << "| photo | upper IoU | lower IoU | dress IoU | joint error % | drapes usable | s |\n"
                  "| --- | --- | --- | --- | --- | --- | --- |\n";
     for (const std::string& name : names) {
         if (interrupted()) throw CommandExit{130, "eval-photos: cancelled"};
         const auto t0 = std::chrono::steady_clock::now();
         const cv::Mat truth = vision::load_label_map(dir / "labels" / (name + ".png"), "labels");
-        recover::RecoverInputs in =
-            read_recover_inputs(dir / "images" / (name + ".jpg"), dir / "joints" / (name + ".json"), "", "", "auto");
-        if (args.mode == "strokes") in.strokes = vision::simulate_strokes(truth, style, 1);
-        recover::RecoveryResult result;
-        recover::RecoverSummary s;
-        std::string error;
-        try {
-            s = recover::recover(model, in, options, result);
-        } catch (const InvalidInput& e) {
-            error = e.what();
-        }
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         ++runs;
-        nlohmann::json row = {{"photo", name}, {"seconds", secs}};
-        if (!error.empty() || s.termination != recover::RecoverTermination::recovered) {
-            row["error"] = error.empty() ? s.brief_report() : error;
-            std::cout << "| " << name << " | failed: " << row["error"].get<std::string>() << " | | | | | " << fixed(secs, 0)
-                      << " |\n";
-            rows.push_back(row);
-            continue;
+        nlohmann::json row = {{"photo", name}};
+        cv::Mat mask;
+        std::string tail = " | | | |\n";  // joint error, usable, seconds: none when rescoring
+        if (!args.rescore_dir.empty()) {
+            // Score an earlier --save run's mask.png instead of recovering.
+            const fs::path saved = fs::path(args.rescore_dir) / name / "mask.png";
+            if (!fs::exists(saved)) {
+                row["error"] = "no " + saved.string();
+                std::cout << "| " << name << " | not saved: " << saved.string() << " | | | | | |\n";
+                rows.push_back(row);
+                continue;
+            }
+            mask = vision::load_label_map(saved, "mask");
+            ++recovered;
+        } else {
+            recover::RecoverInputs in = read_recover_inputs(dir / "images" / (name + ".jpg"),
+                                                            dir / "joints" / (name + ".json"), "", "", "auto");
+            if (args.mode == "strokes") in.strokes = vision::simulate_strokes(truth, style, 1);
+            recover::RecoveryResult result;
+            recover::RecoverSummary s;
+            std::string error;
+            try {
+                s = recover::recover(model, in, options, result);
+            } catch (const InvalidInput& e) {
+                error = e.what();
+            }
+            const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            row["seconds"] = secs;
+            if (!error.empty() || s.termination != recover::RecoverTermination::recovered) {
+                row["error"] = error.empty() ? s.brief_report() : error;
+                std::cout << "| " << name << " | failed: " << row["error"].get<std::string>() << " | | | | | "
+                          << fixed(secs, 0) << " |\n";
+                rows.push_back(row);
+                continue;
+            }
+            ++recovered;
+            const bool ok = s.usable(result);
+            usable += ok ? 1 : 0;
+            seconds.push_back(secs);
+            if (!args.save_dir.empty())
+                write_recovery(fs::path(args.save_dir) / name, (dir / "images" / (name + ".jpg")).string(), model, in,
+                               options, result, s, [] { return !interrupted(); });
+            mask = result.mask;
+            const double err = result.joint_error_percent;
+            joint_err.push_back(err);
+            row["joint_error_percent"] = err;
+            row["usable"] = ok;
+            tail = " | " + fixed(err, 2) + " | " + (ok ? "yes" : "no") + " | " + fixed(secs, 0) + " |\n";
         }
-        ++recovered;
-        const bool ok = s.usable(result);
-        usable += ok ? 1 : 0;
-        seconds.push_back(secs);
-        if (!args.save_dir.empty())
-            write_recovery(fs::path(args.save_dir) / name, (dir / "images" / (name + ".jpg")).string(), model, in,
-                           options, result, s, [] { return !interrupted(); });
-        const auto groups = recover::group_ious(result.mask, truth);
+        const auto groups = recover::group_ious(mask, truth);
         std::cout << "| " << name;
-        nlohmann::json gj = nlohmann::json::object();
+        nlohmann::json gj = nlohmann::json::object(), dj = nlohmann::json::object();
         for (const auto& g : groups) {
             if (g.counted) ious.push_back(g.iou);
             std::cout << " | " << (g.counted ? fixed(g.iou, 3) : std::string("–"));
-            if (g.counted) gj[recover::group_name(g.group)] = g.iou;
+            if (!g.counted) continue;
+            gj[recover::group_name(g.group)] = g.iou;
+            dj[recover::group_name(g.group)] = {{"precision", g.precision},
+                                                {"recall", g.recall},
+                                                {"top_row_error_px", g.top_row_error_px},
+                                                {"bottom_row_error_px", g.bottom_row_error_px},
+                                                {"width_error_px", g.width_error_px}};
+            for (size_t k = 0; k < g.false_positive_shares.size(); ++k)
+                dj[recover::group_name(g.group)]["false_positive_shares"][recover::false_positive_names()[k]] =
+                    g.false_positive_shares[k];
+            for (size_t k = 0; k < g.false_negative_shares.size(); ++k)
+                dj[recover::group_name(g.group)]["false_negative_shares"][recover::false_negative_names()[k]] =
+                    g.false_negative_shares[k];
+            auto& d = lost[static_cast<size_t>(g.group)];
+            const double v[kLost] = {g.precision,
+                                     g.recall,
+                                     g.top_row_error_px,
+                                     g.bottom_row_error_px,
+                                     g.width_error_px,
+                                     g.false_positive_shares[0],
+                                     g.false_positive_shares[1],
+                                     g.false_positive_shares[2],
+                                     g.false_positive_shares[3],
+                                     g.false_positive_shares[4],
+                                     g.false_negative_shares[0],
+                                     g.false_negative_shares[1],
+                                     g.false_negative_shares[2]};
+            for (int k = 0; k < kLost; ++k)
+                if (std::isfinite(v[k])) d[static_cast<size_t>(k)].push_back(v[k]);
         }
-        const double err = result.joint_error_percent;
-        joint_err.push_back(err);
-        std::cout << " | " << fixed(err, 2) << " | " << (ok ? "yes" : "no") << " | " << fixed(secs, 0) << " |\n"
-                  << std::flush;
+        std::cout << tail << std::flush;
         row["iou"] = gj;
-        row["joint_error_percent"] = err;
-        row["usable"] = ok;
+        row["where_lost"] = dj;
         rows.push_back(row);
     }
     auto mean = [](const std::vector<double>& v) {
@@ -261,11 +313,49 @@ void run_eval_photos(const EvalPhotosArgs& args) {
         for (double x : v) s += x;
         return v.empty() ? 0.0 : s / static_cast<double>(v.size());
     };
+    if (!args.rescore_dir.empty())
+        std::cout << "\n" << runs << " photos rescored from " << args.rescore_dir << ", " << recovered
+                  << " with a mask.png; mean garment IoU " << fixed(mean(ious), 3) << " over " << ious.size()
+                  << " garment groups\n";
+    else
     std::cout << "\n" << runs << " photos (" << args.mode << "), " << recovered << " recovered, " << usable
               << " with every drape usable; mean garment IoU " << fixed(mean(ious), 3) << " over " << ious.size()
               << " garment groups; mean joint error " << fixed(mean(joint_err), 2) << " %; median "
               << fixed(median(seconds), 0) << " s per photo\n";
+    // Where the IoU is lost, per group: the mean over the photos (medians for the rows and
+    // widths, whose errors have either sign).
+    nlohmann::json lost_json = nlohmann::json::object();
+    std::cout << "\nWhere the IoU is lost (means over the garments; rows and widths: medians, px, > 0 lower or "
+                 "wider than labelled; wrong = shares of the predicted pixels on what the labels hold there; "
+                 "missed = shares of the labelled pixels on what the prediction holds there):\n\n"
+                 "| group | garments | precision | recall | top row | bottom row | width | wrong: skin / hair / "
+                 "background / garment / other | missed: body / background / garment |\n"
+                 "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    for (int gi = 0; gi < 3; ++gi) {
+        const auto& d = lost[static_cast<size_t>(gi)];
+        if (d[0].empty()) continue;
+        const std::string gname = recover::group_name(static_cast<recover::GarmentGroup>(gi));
+        std::array<double, kLost> v{};
+        for (int k = 0; k < kLost; ++k) v[static_cast<size_t>(k)] = (k >= 2 && k <= 4) ? median(d[static_cast<size_t>(k)]) : mean(d[static_cast<size_t>(k)]);
+        std::cout << "| " << gname << " | " << d[0].size() << " | " << fixed(v[0], 3) << " | " << fixed(v[1], 3) << " | "
+                  << fixed(v[2], 1) << " | " << fixed(v[3], 1) << " | " << fixed(v[4], 1) << " | " << fixed(v[5], 3)
+                  << " / " << fixed(v[6], 3) << " / " << fixed(v[7], 3) << " / " << fixed(v[8], 3) << " / "
+                  << fixed(v[9], 3) << " | " << fixed(v[10], 3) << " / " << fixed(v[11], 3) << " / " << fixed(v[12], 3)
+                  << " |\n";
+        nlohmann::json fp = nlohmann::json::object(), fn = nlohmann::json::object();
+        for (size_t k = 0; k < 5; ++k) fp[recover::false_positive_names()[k]] = v[5 + k];
+        for (size_t k = 0; k < 3; ++k) fn[recover::false_negative_names()[k]] = v[10 + k];
+        lost_json[gname] = {{"garments", d[0].size()},
+                            {"mean_precision", v[0]},
+                            {"mean_recall", v[1]},
+                            {"median_top_row_error_px", v[2]},
+                            {"median_bottom_row_error_px", v[3]},
+                            {"median_width_error_px", v[4]},
+                            {"mean_false_positive_shares", fp},
+                            {"mean_false_negative_shares", fn}};
+    }
     write_json_file(args.out, {{"format", "drape.eval_photos"},
+                               {"where_lost", lost_json},
                                {"mode", args.mode},
                                {"split", args.split},
                                {"photos", runs},
@@ -304,6 +394,8 @@ void add_eval_recover_commands(CLI::App& app) {
     p->add_option("--limit", pa->limit, "only the first N photos");
     p->add_option("--names", pa->names, "only these photos (NAME without extension)");
     p->add_option("--save", pa->save_dir, "also write each recovery's files into this folder");
+    p->add_option("--rescore", pa->rescore_dir,
+                  "do not recover: score the mask.png files an earlier --save run wrote into this folder");
     add_recover_flags(p, pa->flags);
     p->callback([pa] { run_eval_photos(*pa); });
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace drape::recover {
 
@@ -72,6 +73,34 @@ std::string group_name(GarmentGroup g) {
     return "";
 }
 
+namespace {
+
+constexpr int kSkinId = 41;  // labels.txt
+constexpr int kHairId = 19;
+
+// The row below which `fraction` of the histogram's pixels lie (rows weighted by count).
+double row_percentile(const std::vector<long>& per_row, long total, double fraction) {
+    const double want = fraction * static_cast<double>(total);
+    long seen = 0;
+    for (size_t y = 0; y < per_row.size(); ++y) {
+        seen += per_row[y];
+        if (static_cast<double>(seen) >= want && per_row[y] > 0) return static_cast<double>(y);
+    }
+    return static_cast<double>(per_row.size()) - 1;
+}
+
+}  // namespace
+
+const std::array<const char*, 5>& false_positive_names() {
+    static const std::array<const char*, 5> n = {"skin", "hair", "background", "garment", "other"};
+    return n;
+}
+
+const std::array<const char*, 3>& false_negative_names() {
+    static const std::array<const char*, 3> n = {"body", "background", "garment"};
+    return n;
+}
+
 std::array<GroupIou, 3> group_ious(const cv::Mat& predicted, const cv::Mat& truth) {
     if (predicted.size() != truth.size() || predicted.type() != CV_8UC1 || truth.type() != CV_8UC1)
         throw InvalidInput("group IoU: the label maps must be 8-bit and of one size (" + std::to_string(predicted.cols) +
@@ -79,22 +108,65 @@ std::array<GroupIou, 3> group_ious(const cv::Mat& predicted, const cv::Mat& trut
                            std::to_string(truth.rows) + ")");
     std::array<GroupIou, 3> out;
     const double total = static_cast<double>(truth.total());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int gi = 0; gi < 3; ++gi) {
         const auto group = static_cast<GarmentGroup>(gi);
         const auto& ids = group_ids(group);
         auto in = [&](int id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
-        long inter = 0, uni = 0, t = 0;
+        long inter = 0, uni = 0, t = 0, p = 0;
+        std::array<long, 5> fp{};
+        std::array<long, 3> fn{};
+        // 0 skin, 1 hair, 2 background, 3 another group's garment, 4 anything else.
+        const auto fp_kind = [&](int id) {
+            if (id == kSkinId) return 0;
+            if (id == kHairId) return 1;
+            if (id == 0) return 2;
+            for (int o = 0; o < 3; ++o)
+                if (o != gi) {
+                    const auto& other = group_ids(static_cast<GarmentGroup>(o));
+                    if (std::find(other.begin(), other.end(), id) != other.end()) return 3;
+                }
+            return 4;
+        };
+        std::vector<long> p_rows(static_cast<size_t>(truth.rows), 0), t_rows(static_cast<size_t>(truth.rows), 0);
         for (int y = 0; y < truth.rows; ++y)
             for (int x = 0; x < truth.cols; ++x) {
                 const bool a = in(predicted.at<std::uint8_t>(y, x)), b = in(truth.at<std::uint8_t>(y, x));
                 inter += a && b;
                 uni += a || b;
                 t += b;
+                p += a;
+                if (a && !b) ++fp[static_cast<size_t>(fp_kind(truth.at<std::uint8_t>(y, x)))];
+                if (b && !a) {
+                    const int id = predicted.at<std::uint8_t>(y, x);
+                    ++fn[id == kSkinId ? 0 : id == 0 ? 1 : 2];
+                }
+                p_rows[static_cast<size_t>(y)] += a;
+                t_rows[static_cast<size_t>(y)] += b;
             }
-        out[static_cast<size_t>(gi)].group = group;
-        out[static_cast<size_t>(gi)].truth_fraction = t / total;
-        out[static_cast<size_t>(gi)].counted = t >= 0.01 * total;
-        out[static_cast<size_t>(gi)].iou = uni ? static_cast<double>(inter) / static_cast<double>(uni) : 0.0;
+        GroupIou& g = out[static_cast<size_t>(gi)];
+        g.group = group;
+        g.truth_fraction = t / total;
+        g.counted = t >= 0.01 * total;
+        g.iou = uni ? static_cast<double>(inter) / static_cast<double>(uni) : 0.0;
+        g.precision = p ? static_cast<double>(inter) / static_cast<double>(p) : nan;
+        g.recall = t ? static_cast<double>(inter) / static_cast<double>(t) : nan;
+        for (size_t k = 0; k < fp.size(); ++k) g.false_positive_shares[k] = p ? double(fp[k]) / double(p) : nan;
+        for (size_t k = 0; k < fn.size(); ++k) g.false_negative_shares[k] = t ? double(fn[k]) / double(t) : nan;
+        if (p && t) {
+            g.top_row_error_px = row_percentile(p_rows, p, 0.02) - row_percentile(t_rows, t, 0.02);
+            g.bottom_row_error_px = row_percentile(p_rows, p, 0.98) - row_percentile(t_rows, t, 0.98);
+            double sum = 0;
+            int rows = 0;
+            for (size_t y = 0; y < p_rows.size(); ++y)
+                if (p_rows[y] > 0 && t_rows[y] > 0) {
+                    sum += static_cast<double>(p_rows[y] - t_rows[y]);
+                    ++rows;
+                }
+            g.width_error_px = rows ? sum / rows : nan;
+        } else {
+            g.top_row_error_px = g.bottom_row_error_px = g.width_error_px = nan;
+        }
     }
     return out;
 }

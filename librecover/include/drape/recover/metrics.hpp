@@ -57,9 +57,33 @@ struct GroupIou {
     bool counted = false;     ///< the group covers >= 1 % of the photo in the hand labels
     double iou = 0;           ///< of the predicted and labelled group pixels
     double truth_fraction = 0;
+    // Where the IoU is lost (0 / NaN when the predicted or the labelled group is empty):
+    double precision = 0;     ///< predicted pixels that are labelled the group
+    double recall = 0;        ///< labelled pixels that are predicted the group
+    /// Predicted minus labelled top row / bottom row, px (> 0: lower in the image). A
+    /// group's top (bottom) row is the 2nd (98th) percentile of its pixels' rows, so a few
+    /// stray pixels do not move it.
+    double top_row_error_px = 0;
+    double bottom_row_error_px = 0;
+    /// Mean over the rows both cover of predicted minus labelled pixels per row, px (> 0:
+    /// the prediction is wider).
+    double width_error_px = 0;
+    /// What the photo's labels hold where the prediction wrongly has the group, as shares of
+    /// the predicted group pixels (they sum to 1 − precision): skin (41), hair (19),
+    /// background (0), another garment group, anything else (bags, belts, shoes, ...).
+    std::array<double, 5> false_positive_shares{};
+    /// What the prediction holds where the labels have the group but the prediction does
+    /// not, as shares of the labelled group pixels (they sum to 1 − recall): the body (41),
+    /// background (0), another garment group.
+    std::array<double, 3> false_negative_shares{};
 };
 
-/// Per group, the IoU of a predicted label map (mask.png) against the hand labels.
+/// Names of GroupIou::false_positive_shares and false_negative_shares, in order.
+const std::array<const char*, 5>& false_positive_names();  ///< skin, hair, background, garment, other
+const std::array<const char*, 3>& false_negative_names();  ///< body, background, garment
+
+/// Per group, the IoU of a predicted label map (mask.png) against the hand labels, and
+/// where it is lost (precision, recall, the top and bottom rows, the width).
 /// \throw drape::InvalidInput if the sizes or types (CV_8UC1) differ.
 std::array<GroupIou, 3> group_ious(const cv::Mat& predicted, const cv::Mat& truth);
 
