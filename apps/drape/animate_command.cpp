@@ -133,7 +133,8 @@ struct EvalCase {
 };
 
 void run_eval_animate(const std::string& out, double seconds, double fps, double edge_cm, const std::string& only,
-                      int max_substeps) {
+                      int max_substeps, int newton_iterations) {
+    require(newton_iterations >= 0, "--newton-iterations ", newton_iterations, " must be >= 1 (0: the library's)");
     require(std::isfinite(fps) && fps > 0, "--fps ", fps, " must be > 0");
     require(std::isfinite(seconds) && seconds > 0, "--seconds ", seconds, " must be > 0");
     install_interrupt_handlers();
@@ -170,6 +171,7 @@ void run_eval_animate(const std::string& out, double seconds, double fps, double
             options.seconds = seconds;
             options.wind_m_per_s = c.wind;
             if (max_substeps > 0) options.max_substeps = std::max(max_substeps, options.min_substeps);
+            if (newton_iterations > 0) options.simulator.max_newton_iterations = newton_iterations;
             options.on_progress = [](const garment::AnimateProgress&) { return !interrupted(); };
             garment::AnimatedOutfit animated;
             const garment::AnimateSummary s = garment::animate_outfit(
@@ -211,6 +213,7 @@ void add_animate_command(CLI::App& app) {
     auto edge = std::make_shared<double>(3.0);
     auto only = std::make_shared<std::string>();
     auto max_substeps = std::make_shared<int>(0);
+    auto newton_iterations = std::make_shared<int>(0);
     CLI::App* eval = app.add_subcommand(
         "eval-animate", "Acceptance of animation: a walk of each template, t-shirt over pants, skirt in wind");
     eval->add_option("--out", *out, "results JSON")->required();
@@ -219,7 +222,9 @@ void add_animate_command(CLI::App& app) {
     eval->add_option("--edge", *edge, "garment mesh edge length (cm)");
     eval->add_option("--case", *only, "run only this case (skirt, pants, tshirt, dress, tshirt+pants, skirt-wind)");
     eval->add_option("--max-substeps", *max_substeps, "cap on simulation steps per frame (0: the library's)");
-    eval->callback([=] { run_eval_animate(*out, *seconds, *fps, *edge, *only, *max_substeps); });
+    eval->add_option("--newton-iterations", *newton_iterations,
+                     "Newton iterations per simulation step at most (0: the library's)");
+    eval->callback([=] { run_eval_animate(*out, *seconds, *fps, *edge, *only, *max_substeps, *newton_iterations); });
 }
 
 }  // namespace drape::app
