@@ -129,6 +129,15 @@ body::Mask mask_of(const cv::Mat& labels, const std::function<bool(int)>& keep) 
     return m;
 }
 
+// A garment's drape message: the outfit drape's own, and which of its checks failed (the
+// garments are draped together: one garment's fault makes the outfit, so every garment,
+// not usable, and result.json says why).
+std::string outfit_drape_message(const garment::DrapeSummary& d) {
+    const std::string failed = d.failed_checks();
+    if (failed.empty()) return d.message;
+    return "the outfit's drape: " + failed + (d.message.empty() ? std::string() : " (" + d.message + ")");
+}
+
 double mean_curvature(const garment::GarmentMesh& mesh, const Eigen::MatrixX3d& positions) {
     const std::vector<cloth::Hinge> hinges = cloth::build_hinges(mesh.cloth);
     return cloth::vertex_local_curvature(mesh.cloth, hinges, positions).mean();
@@ -502,7 +511,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                                      c.self_intersections,
                                      DrapeState::Source::output,
                                      options.final_edge_cm,
-                                     fs.drape.message};
+                                     outfit_drape_message(fs.drape)};
             } else {
                 g.pattern = garment::make_pattern(g.sizing);
             }

@@ -571,3 +571,25 @@ TEST_CASE("drape: crossings held at rest are untangled and the cloth settles aga
     CHECK(c_on.self_intersections == 0);
     CHECK(c_on.max_penetration_m <= 1e-3);
 }
+
+TEST_CASE("drape summary: failed_checks names each failing check with its value and limit", "[drape][summary]") {
+    DrapeSummary s;
+    s.termination = DrapeTermination::converged;
+    s.converged = true;
+    s.seam_gap_max_m = 0.2e-3;
+    s.penetration_max_m = 0.5e-3;
+    s.mean_drop_m = 0.01;
+    REQUIRE(s.usable());
+    CHECK(s.failed_checks().empty());
+    s.self_intersections = 2;
+    CHECK_FALSE(s.usable());
+    CHECK(s.failed_checks() == "2 self-intersections");
+    s.termination = DrapeTermination::not_settled;
+    s.converged = false;
+    s.mean_drop_m = 0.3;
+    s.penetration_max_m = 1.5e-3;
+    s.seam_gap_max_m = 2e-3;
+    CHECK(s.failed_checks() ==
+          "not converged (not settled); seam gap 2 mm >= 1 mm; penetration 1.5 mm > 1 mm; 2 self-intersections; "
+          "mean drop 30 cm > 25 cm");
+}

@@ -162,6 +162,9 @@ struct DrapeSummary {
                penetration_max_m <= penetration_tolerance_m && self_intersections == 0 &&
                mean_drop_m <= max_mean_drop_m;
     }
+    /// The checks of usable() that fail, each with its value and limit, joined by "; "
+    /// (e.g. "not converged (not settled); mean drop 31.2 cm > 25 cm"); empty when usable().
+    std::string failed_checks() const;
     std::string brief_report() const;
 };
 

@@ -169,10 +169,14 @@ struct DrapeState {
     /// not checked). `edge_cm` is the mesh's target edge.
     enum class Source { output, search } source = Source::output;
     double edge_cm = 0;
-    /// The output drape's own account (DrapeSummary::message): why it is not at rest ("seams
-    /// not closed or cloth not at rest after 600 steps"), what a repair at rest could not
-    /// fix; shared by the garments of an outfit, which are draped together. Empty when the
-    /// drape ended without a remark, and for the search's re-drapes.
+    /// The output drape's own account, shared by the garments of an outfit, which are
+    /// draped together: when the outfit's drape is not usable, which of its checks failed
+    /// (garment::DrapeSummary::failed_checks: "the outfit's drape: not converged
+    /// (not settled); 2 self-intersections"), then DrapeSummary::message in parentheses (why
+    /// it is not at rest, what a repair at rest could not fix). A garment can have usable
+    /// own checks (penetration, seams, crossings above) in an outfit that is not usable.
+    /// Empty when the drape is usable and ended without a remark, and for the search's
+    /// re-drapes.
     std::string message;
 };
 
