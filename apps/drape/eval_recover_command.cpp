@@ -231,6 +231,14 @@ void run_eval_photos(const EvalPhotosArgs& args) {
                 continue;
             }
             mask = vision::load_label_map(saved, "mask");
+            if (mask.size() != truth.size()) {
+                row["error"] = saved.string() + " is " + std::to_string(mask.cols) + " x " + std::to_string(mask.rows) +
+                               ", the photo's labels " + std::to_string(truth.cols) + " x " +
+                               std::to_string(truth.rows) + ": not a recovery of this photo";
+                std::cout << "| " << name << " | not scored: " << row["error"].get<std::string>() << " | | | | | |\n";
+                rows.push_back(row);
+                continue;
+            }
             ++recovered;
         } else {
             recover::RecoverInputs in = read_recover_inputs(dir / "images" / (name + ".jpg"),
@@ -355,6 +363,7 @@ void run_eval_photos(const EvalPhotosArgs& args) {
                             {"mean_false_negative_shares", fn}};
     }
     write_json_file(args.out, {{"format", "drape.eval_photos"},
+                               {"rescored_from", args.rescore_dir.empty() ? nlohmann::json() : nlohmann::json(args.rescore_dir)},
                                {"where_lost", lost_json},
                                {"mode", args.mode},
                                {"split", args.split},
