@@ -175,6 +175,20 @@ void run_eval_synthetic(const EvalSynthArgs& args) {
                                {"runs", rows}});
 }
 
+// A GroupIou's account of where its IoU is lost, for R.json (NaN is written as null).
+nlohmann::json where_lost_json(const recover::GroupIou& g) {
+    nlohmann::json j = {{"precision", g.precision},
+                        {"recall", g.recall},
+                        {"top_row_error_px", g.top_row_error_px},
+                        {"bottom_row_error_px", g.bottom_row_error_px},
+                        {"width_error_px", g.width_error_px}};
+    for (size_t k = 0; k < g.false_positive_shares.size(); ++k)
+        j["false_positive_shares"][recover::false_positive_names()[k]] = g.false_positive_shares[k];
+    for (size_t k = 0; k < g.false_negative_shares.size(); ++k)
+        j["false_negative_shares"][recover::false_negative_names()[k]] = g.false_negative_shares[k];
+    return j;
+}
+
 struct EvalPhotosArgs {
     std::string dir;
     std::string out;
@@ -207,10 +221,7 @@ void run_eval_photos(const EvalPhotosArgs& args) {
     nlohmann::json rows = nlohmann::json::array();
     std::vector<double> ious, seconds, joint_err;
     int runs = 0, recovered = 0, usable = 0;
-    // Per group: precision, recall, top / bottom row and width errors (GroupIou) per photo.
-    // Then the false-positive and false-negative shares (GroupIou's order).
-    constexpr int kLost = 13;
-    std::array<std::array<std::vector<double>, kLost>, 3> lost;
+    std::array<std::vector<recover::GroupIou>, 3> counted;  // per group, the photos where it counts
     std::cout << "| photo | upper IoU | lower IoU | dress IoU | joint error % | drapes usable | s |\n"
                  "| --- | --- | --- | --- | --- | --- | --- |\n";
     for (const std::string& name : names) {
@@ -283,33 +294,8 @@ void run_eval_photos(const EvalPhotosArgs& args) {
             std::cout << " | " << (g.counted ? fixed(g.iou, 3) : std::string("–"));
             if (!g.counted) continue;
             gj[recover::group_name(g.group)] = g.iou;
-            dj[recover::group_name(g.group)] = {{"precision", g.precision},
-                                                {"recall", g.recall},
-                                                {"top_row_error_px", g.top_row_error_px},
-                                                {"bottom_row_error_px", g.bottom_row_error_px},
-                                                {"width_error_px", g.width_error_px}};
-            for (size_t k = 0; k < g.false_positive_shares.size(); ++k)
-                dj[recover::group_name(g.group)]["false_positive_shares"][recover::false_positive_names()[k]] =
-                    g.false_positive_shares[k];
-            for (size_t k = 0; k < g.false_negative_shares.size(); ++k)
-                dj[recover::group_name(g.group)]["false_negative_shares"][recover::false_negative_names()[k]] =
-                    g.false_negative_shares[k];
-            auto& d = lost[static_cast<size_t>(g.group)];
-            const double v[kLost] = {g.precision,
-                                     g.recall,
-                                     g.top_row_error_px,
-                                     g.bottom_row_error_px,
-                                     g.width_error_px,
-                                     g.false_positive_shares[0],
-                                     g.false_positive_shares[1],
-                                     g.false_positive_shares[2],
-                                     g.false_positive_shares[3],
-                                     g.false_positive_shares[4],
-                                     g.false_negative_shares[0],
-                                     g.false_negative_shares[1],
-                                     g.false_negative_shares[2]};
-            for (int k = 0; k < kLost; ++k)
-                if (std::isfinite(v[k])) d[static_cast<size_t>(k)].push_back(v[k]);
+            dj[recover::group_name(g.group)] = where_lost_json(g);
+            counted[static_cast<size_t>(g.group)].push_back(g);
         }
         std::cout << tail << std::flush;
         row["iou"] = gj;
@@ -321,17 +307,18 @@ void run_eval_photos(const EvalPhotosArgs& args) {
         for (double x : v) s += x;
         return v.empty() ? 0.0 : s / static_cast<double>(v.size());
     };
-    if (!args.rescore_dir.empty())
+    if (!args.rescore_dir.empty()) {
         std::cout << "\n" << runs << " photos rescored from " << args.rescore_dir << ", " << recovered
                   << " with a mask.png; mean garment IoU " << fixed(mean(ious), 3) << " over " << ious.size()
                   << " garment groups\n";
-    else
-    std::cout << "\n" << runs << " photos (" << args.mode << "), " << recovered << " recovered, " << usable
-              << " with every drape usable; mean garment IoU " << fixed(mean(ious), 3) << " over " << ious.size()
-              << " garment groups; mean joint error " << fixed(mean(joint_err), 2) << " %; median "
-              << fixed(median(seconds), 0) << " s per photo\n";
-    // Where the IoU is lost, per group: the mean over the photos (medians for the rows and
-    // widths, whose errors have either sign).
+    } else {
+        std::cout << "\n" << runs << " photos (" << args.mode << "), " << recovered << " recovered, " << usable
+                  << " with every drape usable; mean garment IoU " << fixed(mean(ious), 3) << " over " << ious.size()
+                  << " garment groups; mean joint error " << fixed(mean(joint_err), 2) << " %; median "
+                  << fixed(median(seconds), 0) << " s per photo\n";
+    }
+    // Where the IoU is lost, per group: means over the photos (medians for the rows and
+    // widths, whose errors have either sign); NaN fields (an empty group) left out.
     nlohmann::json lost_json = nlohmann::json::object();
     std::cout << "\nWhere the IoU is lost (means over the garments; rows and widths: medians, px, > 0 lower or "
                  "wider than labelled; wrong = shares of the predicted pixels on what the labels hold there; "
@@ -339,28 +326,36 @@ void run_eval_photos(const EvalPhotosArgs& args) {
                  "| group | garments | precision | recall | top row | bottom row | width | wrong: skin / hair / "
                  "background / garment / other | missed: body / background / garment |\n"
                  "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    for (int gi = 0; gi < 3; ++gi) {
-        const auto& d = lost[static_cast<size_t>(gi)];
-        if (d[0].empty()) continue;
-        const std::string gname = recover::group_name(static_cast<recover::GarmentGroup>(gi));
-        std::array<double, kLost> v{};
-        for (int k = 0; k < kLost; ++k) v[static_cast<size_t>(k)] = (k >= 2 && k <= 4) ? median(d[static_cast<size_t>(k)]) : mean(d[static_cast<size_t>(k)]);
-        std::cout << "| " << gname << " | " << d[0].size() << " | " << fixed(v[0], 3) << " | " << fixed(v[1], 3) << " | "
-                  << fixed(v[2], 1) << " | " << fixed(v[3], 1) << " | " << fixed(v[4], 1) << " | " << fixed(v[5], 3)
-                  << " / " << fixed(v[6], 3) << " / " << fixed(v[7], 3) << " / " << fixed(v[8], 3) << " / "
-                  << fixed(v[9], 3) << " | " << fixed(v[10], 3) << " / " << fixed(v[11], 3) << " / " << fixed(v[12], 3)
-                  << " |\n";
-        nlohmann::json fp = nlohmann::json::object(), fn = nlohmann::json::object();
-        for (size_t k = 0; k < 5; ++k) fp[recover::false_positive_names()[k]] = v[5 + k];
-        for (size_t k = 0; k < 3; ++k) fn[recover::false_negative_names()[k]] = v[10 + k];
-        lost_json[gname] = {{"garments", d[0].size()},
-                            {"mean_precision", v[0]},
-                            {"mean_recall", v[1]},
-                            {"median_top_row_error_px", v[2]},
-                            {"median_bottom_row_error_px", v[3]},
-                            {"median_width_error_px", v[4]},
-                            {"mean_false_positive_shares", fp},
-                            {"mean_false_negative_shares", fn}};
+    for (const auto& gs : counted) {
+        if (gs.empty()) continue;
+        const auto over = [&](const auto& field) {
+            std::vector<double> v;
+            for (const recover::GroupIou& g : gs)
+                if (std::isfinite(field(g))) v.push_back(field(g));
+            return v;
+        };
+        recover::GroupIou m;  // the summary, in GroupIou's fields
+        m.precision = mean(over([](const auto& g) { return g.precision; }));
+        m.recall = mean(over([](const auto& g) { return g.recall; }));
+        m.top_row_error_px = median(over([](const auto& g) { return g.top_row_error_px; }));
+        m.bottom_row_error_px = median(over([](const auto& g) { return g.bottom_row_error_px; }));
+        m.width_error_px = median(over([](const auto& g) { return g.width_error_px; }));
+        for (size_t k = 0; k < m.false_positive_shares.size(); ++k)
+            m.false_positive_shares[k] = mean(over([k](const auto& g) { return g.false_positive_shares[k]; }));
+        for (size_t k = 0; k < m.false_negative_shares.size(); ++k)
+            m.false_negative_shares[k] = mean(over([k](const auto& g) { return g.false_negative_shares[k]; }));
+        const std::string gname = recover::group_name(gs.front().group);
+        std::cout << "| " << gname << " | " << gs.size() << " | " << fixed(m.precision, 3) << " | "
+                  << fixed(m.recall, 3) << " | " << fixed(m.top_row_error_px, 1) << " | "
+                  << fixed(m.bottom_row_error_px, 1) << " | " << fixed(m.width_error_px, 1) << " |";
+        for (size_t k = 0; k < m.false_positive_shares.size(); ++k)
+            std::cout << (k ? " / " : " ") << fixed(m.false_positive_shares[k], 3);
+        std::cout << " |";
+        for (size_t k = 0; k < m.false_negative_shares.size(); ++k)
+            std::cout << (k ? " / " : " ") << fixed(m.false_negative_shares[k], 3);
+        std::cout << " |\n";
+        lost_json[gname] = where_lost_json(m);
+        lost_json[gname]["garments"] = gs.size();
     }
     write_json_file(args.out, {{"format", "drape.eval_photos"},
                                {"rescored_from", args.rescore_dir.empty() ? nlohmann::json() : nlohmann::json(args.rescore_dir)},

@@ -13,7 +13,6 @@
 #include <cmath>
 #include <set>
 #include <sstream>
-#include <vector>
 #include <utility>
 
 namespace drape::garment {
@@ -82,24 +81,16 @@ bool DrapeOptions::is_valid(std::string* why) const {
 }
 
 std::string DrapeSummary::failed_checks() const {
-    std::vector<std::string> failed;
-    const auto number = [](double v) {
-        std::ostringstream os;
-        os << v;
-        return os.str();
-    };
-    if (!converged) failed.push_back(std::string("not converged (") + termination_name(termination) + ")");
-    if (!(seam_gap_max_m < seam_gap_tolerance_m))
-        failed.push_back("seam gap " + number(1000 * seam_gap_max_m) + " mm >= " + number(1000 * seam_gap_tolerance_m) +
-                         " mm");
-    if (!(penetration_max_m <= penetration_tolerance_m))
-        failed.push_back("penetration " + number(1000 * penetration_max_m) + " mm > " +
-                         number(1000 * penetration_tolerance_m) + " mm");
-    if (self_intersections != 0) failed.push_back(std::to_string(self_intersections) + " self-intersections");
-    if (!(mean_drop_m <= max_mean_drop_m))
-        failed.push_back("mean drop " + number(100 * mean_drop_m) + " cm > " + number(100 * max_mean_drop_m) + " cm");
     std::string out;
-    for (const std::string& f : failed) out += (out.empty() ? "" : "; ") + f;
+    const auto add = [&](const std::string& f) { out += (out.empty() ? "" : "; ") + f; };
+    if (!converged) add(drape::detail::concat("not converged (", termination_name(termination), ")"));
+    if (!(seam_gap_max_m < seam_gap_tolerance_m))
+        add(drape::detail::concat("seam gap ", 1000 * seam_gap_max_m, " mm >= ", 1000 * seam_gap_tolerance_m, " mm"));
+    if (!(penetration_max_m <= penetration_tolerance_m))
+        add(drape::detail::concat("penetration ", 1000 * penetration_max_m, " mm > ", 1000 * penetration_tolerance_m, " mm"));
+    if (self_intersections != 0) add(drape::detail::concat(self_intersections, " self-intersections"));
+    if (!(mean_drop_m <= max_mean_drop_m))
+        add(drape::detail::concat("mean drop ", 100 * mean_drop_m, " cm > ", 100 * max_mean_drop_m, " cm"));
     return out;
 }
 

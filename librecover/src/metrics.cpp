@@ -1,6 +1,8 @@
 #include <drape/recover/metrics.hpp>
 
 #include <drape/core/errors.hpp>
+#include <drape/recover/outfit_meshes.hpp>
+#include <drape/vision/label_table.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -75,9 +77,6 @@ std::string group_name(GarmentGroup g) {
 
 namespace {
 
-constexpr int kSkinId = 41;  // labels.txt
-constexpr int kHairId = 19;
-
 // The row below which `fraction` of the histogram's pixels lie (rows weighted by count).
 double row_percentile(const std::vector<long>& per_row, long total, double fraction) {
     const double want = fraction * static_cast<double>(total);
@@ -88,6 +87,14 @@ double row_percentile(const std::vector<long>& per_row, long total, double fract
     }
     return static_cast<double>(per_row.size()) - 1;
 }
+
+// Pixel counts of one garment group over a pair of label maps.
+struct GroupCounts {
+    long inter = 0, uni = 0, truth = 0, predicted = 0;
+    std::array<long, 5> fp{};  // false_positive_names() order
+    std::array<long, 3> fn{};  // false_negative_names() order
+    std::vector<long> predicted_rows, truth_rows;
+};
 
 }  // namespace
 
@@ -106,67 +113,63 @@ std::array<GroupIou, 3> group_ious(const cv::Mat& predicted, const cv::Mat& trut
         throw InvalidInput("group IoU: the label maps must be 8-bit and of one size (" + std::to_string(predicted.cols) +
                            " x " + std::to_string(predicted.rows) + " against " + std::to_string(truth.cols) + " x " +
                            std::to_string(truth.rows) + ")");
+    const vision::LabelTable& table = vision::LabelTable::fashionista();  // labels.txt
+    const int skin = table.skin_id(), hair = table.hair_id(), background = table.background_id();
+    std::array<int, 256> group_of;  // class id -> garment group, -1 for none
+    group_of.fill(-1);
+    for (int gi = 0; gi < 3; ++gi)
+        for (int id : group_ids(static_cast<GarmentGroup>(gi))) group_of[static_cast<size_t>(id)] = gi;
+    std::array<GroupCounts, 3> c;
+    for (GroupCounts& g : c) {
+        g.predicted_rows.assign(static_cast<size_t>(truth.rows), 0);
+        g.truth_rows.assign(static_cast<size_t>(truth.rows), 0);
+    }
+    for (int y = 0; y < truth.rows; ++y)
+        for (int x = 0; x < truth.cols; ++x) {
+            const int pid = predicted.at<std::uint8_t>(y, x), tid = truth.at<std::uint8_t>(y, x);
+            const int pg = group_of[static_cast<size_t>(pid)], tg = group_of[static_cast<size_t>(tid)];
+            for (int gi = 0; gi < 3; ++gi) {
+                const bool a = pg == gi, b = tg == gi;
+                if (!a && !b) continue;
+                GroupCounts& g = c[static_cast<size_t>(gi)];
+                g.inter += a && b;
+                ++g.uni;
+                g.truth += b;
+                g.predicted += a;
+                g.predicted_rows[static_cast<size_t>(y)] += a;
+                g.truth_rows[static_cast<size_t>(y)] += b;
+                if (a && !b)
+                    ++g.fp[tid == skin ? 0 : tid == hair ? 1 : tid == background ? 2 : tg >= 0 ? 3 : 4];
+                if (b && !a) ++g.fn[pid == kSkinClassId ? 0 : pid == 0 ? 1 : 2];
+            }
+        }
     std::array<GroupIou, 3> out;
     const double total = static_cast<double>(truth.total());
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int gi = 0; gi < 3; ++gi) {
-        const auto group = static_cast<GarmentGroup>(gi);
-        const auto& ids = group_ids(group);
-        auto in = [&](int id) { return std::find(ids.begin(), ids.end(), id) != ids.end(); };
-        long inter = 0, uni = 0, t = 0, p = 0;
-        std::array<long, 5> fp{};
-        std::array<long, 3> fn{};
-        // 0 skin, 1 hair, 2 background, 3 another group's garment, 4 anything else.
-        const auto fp_kind = [&](int id) {
-            if (id == kSkinId) return 0;
-            if (id == kHairId) return 1;
-            if (id == 0) return 2;
-            for (int o = 0; o < 3; ++o)
-                if (o != gi) {
-                    const auto& other = group_ids(static_cast<GarmentGroup>(o));
-                    if (std::find(other.begin(), other.end(), id) != other.end()) return 3;
-                }
-            return 4;
-        };
-        std::vector<long> p_rows(static_cast<size_t>(truth.rows), 0), t_rows(static_cast<size_t>(truth.rows), 0);
-        for (int y = 0; y < truth.rows; ++y)
-            for (int x = 0; x < truth.cols; ++x) {
-                const bool a = in(predicted.at<std::uint8_t>(y, x)), b = in(truth.at<std::uint8_t>(y, x));
-                inter += a && b;
-                uni += a || b;
-                t += b;
-                p += a;
-                if (a && !b) ++fp[static_cast<size_t>(fp_kind(truth.at<std::uint8_t>(y, x)))];
-                if (b && !a) {
-                    const int id = predicted.at<std::uint8_t>(y, x);
-                    ++fn[id == kSkinId ? 0 : id == 0 ? 1 : 2];
-                }
-                p_rows[static_cast<size_t>(y)] += a;
-                t_rows[static_cast<size_t>(y)] += b;
-            }
+        const GroupCounts& k = c[static_cast<size_t>(gi)];
+        const long p = k.predicted, t = k.truth;
         GroupIou& g = out[static_cast<size_t>(gi)];
-        g.group = group;
+        g.group = static_cast<GarmentGroup>(gi);
         g.truth_fraction = t / total;
         g.counted = t >= 0.01 * total;
-        g.iou = uni ? static_cast<double>(inter) / static_cast<double>(uni) : 0.0;
-        g.precision = p ? static_cast<double>(inter) / static_cast<double>(p) : nan;
-        g.recall = t ? static_cast<double>(inter) / static_cast<double>(t) : nan;
-        for (size_t k = 0; k < fp.size(); ++k) g.false_positive_shares[k] = p ? double(fp[k]) / double(p) : nan;
-        for (size_t k = 0; k < fn.size(); ++k) g.false_negative_shares[k] = t ? double(fn[k]) / double(t) : nan;
-        if (p && t) {
-            g.top_row_error_px = row_percentile(p_rows, p, 0.02) - row_percentile(t_rows, t, 0.02);
-            g.bottom_row_error_px = row_percentile(p_rows, p, 0.98) - row_percentile(t_rows, t, 0.98);
-            double sum = 0;
-            int rows = 0;
-            for (size_t y = 0; y < p_rows.size(); ++y)
-                if (p_rows[y] > 0 && t_rows[y] > 0) {
-                    sum += static_cast<double>(p_rows[y] - t_rows[y]);
-                    ++rows;
-                }
-            g.width_error_px = rows ? sum / rows : nan;
-        } else {
-            g.top_row_error_px = g.bottom_row_error_px = g.width_error_px = nan;
-        }
+        g.iou = k.uni ? static_cast<double>(k.inter) / static_cast<double>(k.uni) : 0.0;
+        g.precision = p ? static_cast<double>(k.inter) / static_cast<double>(p) : nan;
+        g.recall = t ? static_cast<double>(k.inter) / static_cast<double>(t) : nan;
+        for (size_t j = 0; j < k.fp.size(); ++j) g.false_positive_shares[j] = p ? double(k.fp[j]) / double(p) : nan;
+        for (size_t j = 0; j < k.fn.size(); ++j) g.false_negative_shares[j] = t ? double(k.fn[j]) / double(t) : nan;
+        g.top_row_error_px = g.bottom_row_error_px = g.width_error_px = nan;
+        if (!(p && t)) continue;
+        g.top_row_error_px = row_percentile(k.predicted_rows, p, 0.02) - row_percentile(k.truth_rows, t, 0.02);
+        g.bottom_row_error_px = row_percentile(k.predicted_rows, p, 0.98) - row_percentile(k.truth_rows, t, 0.98);
+        double sum = 0;
+        int rows = 0;
+        for (size_t y = 0; y < k.predicted_rows.size(); ++y)
+            if (k.predicted_rows[y] > 0 && k.truth_rows[y] > 0) {
+                sum += static_cast<double>(k.predicted_rows[y] - k.truth_rows[y]);
+                ++rows;
+            }
+        if (rows) g.width_error_px = sum / rows;
     }
     return out;
 }
