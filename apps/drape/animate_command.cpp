@@ -134,7 +134,8 @@ struct EvalCase {
 
 void run_eval_animate(const std::string& out, double seconds, double fps, double edge_cm, const std::string& only,
                       int max_substeps, int newton_iterations) {
-    require(newton_iterations >= 0, "--newton-iterations ", newton_iterations, " must be >= 0 (0: the library's default)");
+    require(newton_iterations >= 0, "--newton-iterations ", newton_iterations,
+            " must be >= 0 (0: the library's default)");
     require(std::isfinite(fps) && fps > 0, "--fps ", fps, " must be > 0");
     require(std::isfinite(seconds) && seconds > 0, "--seconds ", seconds, " must be > 0");
     install_interrupt_handlers();

@@ -358,7 +358,8 @@ void run_eval_photos(const EvalPhotosArgs& args) {
         lost_json[gname]["garments"] = gs.size();
     }
     write_json_file(args.out, {{"format", "drape.eval_photos"},
-                               {"rescored_from", args.rescore_dir.empty() ? nlohmann::json() : nlohmann::json(args.rescore_dir)},
+                               {"rescored_from",
+                                args.rescore_dir.empty() ? nlohmann::json() : nlohmann::json(args.rescore_dir)},
                                {"where_lost", lost_json},
                                {"mode", args.mode},
                                {"split", args.split},

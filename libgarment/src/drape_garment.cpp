@@ -87,7 +87,8 @@ std::string DrapeSummary::failed_checks() const {
     if (!(seam_gap_max_m < seam_gap_tolerance_m))
         add(drape::detail::concat("seam gap ", 1000 * seam_gap_max_m, " mm >= ", 1000 * seam_gap_tolerance_m, " mm"));
     if (!(penetration_max_m <= penetration_tolerance_m))
-        add(drape::detail::concat("penetration ", 1000 * penetration_max_m, " mm > ", 1000 * penetration_tolerance_m, " mm"));
+        add(drape::detail::concat("penetration ", 1000 * penetration_max_m, " mm > ", 1000 * penetration_tolerance_m,
+                                  " mm"));
     if (self_intersections != 0) add(drape::detail::concat(self_intersections, " self-intersections"));
     if (!(mean_drop_m <= max_mean_drop_m))
         add(drape::detail::concat("mean drop ", 100 * mean_drop_m, " cm > ", 100 * max_mean_drop_m, " cm"));
