@@ -79,6 +79,9 @@ void add_recover_flags(CLI::App* cmd, RecoverFlags& f) {
     cmd->add_option("--max-arm-elevation", f.max_arm_elevation,
                     "upper arms raised more than this many degrees above hanging are lowered to it before draping "
                     "(default 90; 180 = off; docs/recovery.md)");
+    cmd->add_option("--min-ease", f.min_ease,
+                    "the least ease (cm of girth over the body) the sizing search lets a garment reach; negative = "
+                    "smaller than the body, stretched on it (default 2; -10..10; docs/recovery.md)");
     cmd->add_option("--output-drape", f.output_drape,
                     "output (default: the output drape at the output resolution, usable or not) | auto (the search's "
                     "re-drape where only that one is usable) | search (the search's re-drapes only, quicker; "

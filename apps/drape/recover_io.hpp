@@ -29,6 +29,7 @@ struct RecoverFlags {
     std::string material_target = "calibrated";
     std::string output_drape = "output";  // output | auto | search
     std::optional<double> max_arm_elevation;
+    std::optional<double> min_ease;
 };
 
 /// Adds the shared flags to a command.

@@ -159,12 +159,12 @@ std::vector<bool> free_parameters(GarmentChoice choice, const garment::GarmentSi
     return free;
 }
 
-std::vector<double> lower_bounds(const garment::GarmentSizing& start) {
+std::vector<double> lower_bounds(const garment::GarmentSizing& start, double min_ease_cm) {
     const auto params = garment::sizing_parameters(start.type);
     const auto values = garment::sizing_values(start);
     std::vector<double> out(params.size(), std::nan(""));
     const garment::Ease ease;  // the proposal's
-    const auto over = [](double e) { return std::max(0.0, e - kMinEaseCm); };
+    const auto over = [min_ease_cm](double e) { return std::max(0.0, e - min_ease_cm); };
     for (size_t i = 0; i < params.size(); ++i) {
         const std::string& n = params[i].name;
         double slack = -1;  // < 0: not a girth

@@ -34,12 +34,12 @@ std::vector<bool> free_parameters(GarmentChoice choice, const garment::GarmentSi
 
 /// Lower bounds of the sizing search (sizing_parameters order, NaN = none): the girths the
 /// body needs (a skirt's or pants' waist and hip, a leg's knee and ankle, a top's panel width
-/// and sleeve opening) keep at least kMinEaseCm of ease over the body: the starting sizing,
-/// which the template's proposal made from the fitted body plus its ease (garment::Ease:
-/// chest 10, waist 4, hip 8, leg 8 cm), less that ease above kMinEaseCm. A bound at the
-/// starting girth itself let the swarm only widen a garment (a one-sided search: on the 30
-/// shared photos 83 of 127 searched girths grew, none shrank; docs/notes/recovery.md).
-inline constexpr double kMinEaseCm = 2.0;
-std::vector<double> lower_bounds(const garment::GarmentSizing& start);
+/// and sleeve opening) keep at least `min_ease_cm` of ease over the body
+/// (RecoverOptions::min_ease_cm): the starting sizing, which the template's proposal made from
+/// the fitted body plus its ease (garment::Ease: chest 10, waist 4, hip 8, leg 8 cm), less
+/// that ease above `min_ease_cm`. A bound at the starting girth itself let the swarm only
+/// widen a garment (a one-sided search: on the 30 shared photos 83 of 127 searched girths
+/// grew, none shrank; docs/notes/recovery.md).
+std::vector<double> lower_bounds(const garment::GarmentSizing& start, double min_ease_cm);
 
 }  // namespace drape::recover

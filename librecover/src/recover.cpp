@@ -401,7 +401,7 @@ RecoverSummary recover(const body::BodyModel& model, const RecoverInputs& in, co
                 so.threads = options.threads;
                 so.seed = options.seed + static_cast<unsigned>(101 * round + i);
                 so.free = free_parameters(g.choice, g.initial_sizing);
-                so.lower_bounds = lower_bounds(g.initial_sizing);
+                so.lower_bounds = lower_bounds(g.initial_sizing, options.min_ease_cm);
                 so.constrain = garment::tie_dress_waist;
                 so.box_fraction = round == 1 ? 0.15 : 0.07;
                 so.on_progress = [&](const garment::SizingSearchProgress& p) {

@@ -149,6 +149,8 @@ bool RecoverOptions::is_valid(std::string* why) const {
     if (!(max_arm_elevation_degrees >= 0 && max_arm_elevation_degrees <= 180))
         return fail("max_arm_elevation_degrees must be in [0, 180] (got " + std::to_string(max_arm_elevation_degrees) +
                     ")");
+    if (!(min_ease_cm >= -10 && min_ease_cm <= 10))
+        return fail("min_ease_cm must be in [-10, 10] (got " + std::to_string(min_ease_cm) + ")");
     if (base_fabric.empty()) return fail("base_fabric is empty");
     return true;
 }

@@ -1,10 +1,11 @@
-// The starting sizing's search bounds: girths may shrink to 2 cm of ease over the body,
+// The starting sizing's search bounds: girths may shrink to the least ease over the body (2 cm by default),
 // lengths and angles are not bounded below (docs/recovery.md, "Sizing").
 #include "../../librecover/src/initial_sizing.hpp"
 
 #include <drape/body/measurements.hpp>
 #include <drape/garment/garment_sizing.hpp>
 #include <drape/garment/sizing_proposal.hpp>
+#include <drape/recover/recover.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -28,9 +29,9 @@ body::BodyMeasurements woman() {
     return m;
 }
 
-double bound_of(const garment::GarmentSizing& g, const std::string& name) {
+double bound_of(const garment::GarmentSizing& g, const std::string& name, double min_ease_cm = 2.0) {
     const auto params = garment::sizing_parameters(g.type);
-    const auto b = lower_bounds(g);
+    const auto b = lower_bounds(g, min_ease_cm);
     REQUIRE(b.size() == params.size());
     for (size_t i = 0; i < params.size(); ++i)
         if (params[i].name == name) return b[i];
@@ -63,9 +64,29 @@ TEST_CASE("sizing search bounds: girths down to 2 cm of ease over the body, noth
     CHECK(std::isnan(bound_of(dress, "skirt.r2")));
     // Every bound lies below its start: the search can narrow a garment, never must widen it.
     for (const auto* g : {&top, &pants, &skirt, &dress}) {
-        const auto b = lower_bounds(*g);
+        const auto b = lower_bounds(*g, 2.0);
         const auto v = garment::sizing_values(*g);
         for (size_t i = 0; i < b.size(); ++i)
             if (!std::isnan(b[i])) CHECK(b[i] < v[i]);
+    }
+    // A negative least ease lets a knit top be smaller than the body: (92 - 4) / 2.
+    CHECK(bound_of(top, "w2", -4.0) == Approx((92.0 - 4.0) / 2));
+    CHECK(bound_of(top, "w1", -4.0) == Approx(top.tshirt.w1 - 7.0));
+    CHECK(bound_of(pants, "w2", -4.0) == Approx(100.0 - 4.0));
+    CHECK(bound_of(skirt, "l1", 0.0) == Approx(skirt.skirt.l1 - 2.0));
+    // An ease above the proposal's leaves the girth at its start.
+    CHECK(bound_of(top, "w2", 12.0) == Approx(top.tshirt.w2));
+}
+
+TEST_CASE("RecoverOptions: the least ease is checked and named", "[recover][sizing]") {
+    RecoverOptions o;
+    std::string why;
+    CHECK(o.is_valid(&why));
+    o.min_ease_cm = -4;
+    CHECK(o.is_valid(&why));
+    for (double bad : {-10.5, 11.0, std::nan("")}) {
+        o.min_ease_cm = bad;
+        CHECK_FALSE(o.is_valid(&why));
+        CHECK(why.find("min_ease_cm") != std::string::npos);
     }
 }

@@ -122,6 +122,12 @@ struct RecoverOptions {
     /// that pose (RecoveryResult::pose); the photo fit's pose stays in RecoveryResult::fit.
     /// [0, 180]; 180 = off (docs/recovery.md).
     double max_arm_elevation_degrees = 90.0;
+    /// The least ease (cm of girth over the fitted body) that the sizing search lets a
+    /// garment's body girths reach (a top's chest and sleeve opening, a skirt's waist, pants'
+    /// waist, hip and legs); the search starts at the proposal's ease (garment::Ease). Negative
+    /// = the garment may be smaller than the body and stretch on it, as knits are worn.
+    /// [-10, 10] cm (docs/recovery.md, "Sizing bounds").
+    double min_ease_cm = 2.0;
     /// Which drape the result's garments are (docs/recovery.md, step 7).
     OutputDrape output_drape = OutputDrape::output;
     /// Estimate the material (false: keep the base fabric at bending ×1).
