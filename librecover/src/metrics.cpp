@@ -1,7 +1,6 @@
 #include <drape/recover/metrics.hpp>
 
 #include <drape/core/errors.hpp>
-#include <drape/recover/outfit_meshes.hpp>
 #include <drape/vision/label_table.hpp>
 
 #include <algorithm>
@@ -140,7 +139,7 @@ std::array<GroupIou, 3> group_ious(const cv::Mat& predicted, const cv::Mat& trut
                 g.truth_rows[static_cast<size_t>(y)] += b;
                 if (a && !b)
                     ++g.fp[tid == skin ? 0 : tid == hair ? 1 : tid == background ? 2 : tg >= 0 ? 3 : 4];
-                if (b && !a) ++g.fn[pid == kSkinClassId ? 0 : pid == 0 ? 1 : 2];
+                if (b && !a) ++g.fn[pid == skin ? 0 : pid == background ? 1 : 2];
             }
         }
     std::array<GroupIou, 3> out;

@@ -29,7 +29,9 @@ body::BodyMeasurements woman() {
     return m;
 }
 
-double bound_of(const garment::GarmentSizing& g, const std::string& name, double min_ease_cm = 2.0) {
+// The bound at the library's default least ease unless one is given.
+double bound_of(const garment::GarmentSizing& g, const std::string& name,
+                double min_ease_cm = RecoverOptions().min_ease_cm) {
     const auto params = garment::sizing_parameters(g.type);
     const auto b = lower_bounds(g, min_ease_cm);
     REQUIRE(b.size() == params.size());
@@ -64,7 +66,7 @@ TEST_CASE("sizing search bounds: girths down to 2 cm of ease over the body, noth
     CHECK(std::isnan(bound_of(dress, "skirt.r2")));
     // Every bound lies below its start: the search can narrow a garment, never must widen it.
     for (const auto* g : {&top, &pants, &skirt, &dress}) {
-        const auto b = lower_bounds(*g, 2.0);
+        const auto b = lower_bounds(*g, RecoverOptions().min_ease_cm);
         const auto v = garment::sizing_values(*g);
         for (size_t i = 0; i < b.size(); ++i)
             if (!std::isnan(b[i])) CHECK(b[i] < v[i]);
