@@ -76,6 +76,9 @@ void add_recover_flags(CLI::App* cmd, RecoverFlags& f) {
     cmd->add_option("--material-target", f.material_target,
                     "calibrated (default: K from the calibrated mapping of P) | synthesis (P measured on renders of "
                     "the candidate drapes; docs/material-estimation.md)");
+    cmd->add_option("--base-fabric", f.base_fabric,
+                    "the measured fabric whose bending the material search scales x1..x100 (default gray-interlock, "
+                    "the paper's space; the names are in docs/materials.md)");
     cmd->add_option("--max-arm-elevation", f.max_arm_elevation,
                     "upper arms raised more than this many degrees above hanging are lowered to it before draping "
                     "(default 90; 180 = off; docs/recovery.md)");

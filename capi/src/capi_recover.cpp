@@ -47,7 +47,8 @@ struct StructTraits<drape_recover_options> {
     static auto fields() {
         using S = drape_recover_options;
         return std::make_tuple(&S::quality, &S::threads, &S::seed, &S::particles, &S::generations, &S::rounds,
-                               &S::estimate_material, &S::output_drape);
+                               &S::estimate_material, &S::output_drape, &S::material_target, &S::base_fabric,
+                               &S::max_arm_elevation_degrees, &S::min_ease_cm, &S::joint_pose);
     }
     static drape_recover_options defaults() {
         const drape::recover::RecoverOptions o;
@@ -61,6 +62,11 @@ struct StructTraits<drape_recover_options> {
         d.rounds = 0;
         d.estimate_material = o.estimate_material ? 1 : 0;
         d.output_drape = nullptr;
+        d.material_target = nullptr;
+        d.base_fabric = nullptr;
+        d.max_arm_elevation_degrees = o.max_arm_elevation_degrees;
+        d.min_ease_cm = o.min_ease_cm;
+        d.joint_pose = o.joint_pose_material ? 1 : 0;
         return d;
     }
 };
@@ -110,6 +116,11 @@ drape_status drape_recover(drape_body_model model, const drape_recover_inputs* i
         if (opt.rounds) o.rounds = opt.rounds;
         o.estimate_material = opt.estimate_material != 0;
         if (opt.output_drape) o.output_drape = dr::output_drape_from_name(opt.output_drape);
+        if (opt.material_target) o.material_target = dr::material_target_from_name(opt.material_target);
+        if (opt.base_fabric) o.base_fabric = opt.base_fabric;
+        o.max_arm_elevation_degrees = opt.max_arm_elevation_degrees;
+        o.min_ease_cm = opt.min_ease_cm;
+        o.joint_pose_material = opt.joint_pose != 0;
         std::string why;
         if (!o.is_valid(&why)) throw drape::InvalidInput("options: " + why);
         o.on_progress = [&mon](const dr::RecoverProgress& p) {

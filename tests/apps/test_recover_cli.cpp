@@ -2,6 +2,7 @@
 // accuracy against truth.json asserted), and clear errors for bad input. The evaluations
 // over the suite and the photos are the commands of docs/recovery.md.
 #include <catch2/catch.hpp>
+#include <drape/cloth/material.hpp>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -9,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "cli_runner.hpp"
 #include "test_paths.hpp"
@@ -81,13 +83,20 @@ TEST_CASE("drape recover refuses bad input with a clear error", "[apps][recover]
         CHECK(r.out.find("no garment found") != std::string::npos);
         CHECK_FALSE(fs::exists(dir / "out" / "result.json"));
     }
-    SECTION("an unknown garment or quality") {
-        const auto g = run_drape(base + " --garment coat --out " + q(dir / "out"));
-        CHECK(g.exit_code == 2);
-        CHECK(g.out.find("unknown garment 'coat'") != std::string::npos);
-        const auto qy = run_drape(base + " --quality best --out " + q(dir / "out"));
-        CHECK(qy.exit_code == 2);
-        CHECK(qy.out.find("unknown quality 'best'") != std::string::npos);
+    SECTION("an unknown garment, quality or fabric, an option out of range") {
+        const std::pair<const char*, const char*> bad[] = {
+            {"--garment coat", "unknown garment 'coat'"},
+            {"--quality best", "unknown quality 'best'"},
+            {"--base-fabric velvet", "base_fabric 'velvet' is not a measured fabric"},
+            {"--min-ease -12", "min_ease_cm must be in [-10, 10] (got -12"},
+        };
+        for (const auto& [flags, message] : bad) {
+            const auto r = run_drape(base + " " + flags + " --out " + q(dir / "out"));
+            INFO(flags << ": " << r.out);
+            CHECK(r.exit_code == 2);
+            CHECK(r.out.find(message) != std::string::npos);
+            CHECK_FALSE(fs::exists(dir / "out" / "result.json"));
+        }
     }
 }
 
@@ -147,6 +156,9 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     CHECK(rg["drape"]["penetration_max_m"].get<double>() <= 0.001);
     CHECK(rg["drape"]["self_intersections"].get<int>() == 0);
     CHECK(result["output_drape"] == "output");
+    CHECK(result["base_fabric"] == "gray-interlock");
+    CHECK(result["min_ease_cm"] == 2.0);
+    CHECK(rg["material"]["base_fabric"] == "gray-interlock");
     CHECK(rg["drape"]["mesh"] == "output");
     CHECK(rg["drape"]["edge_cm"].get<double>() == 5.0);
     CHECK(rg["drape"]["message"].is_string());
@@ -155,10 +167,12 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     // search is the same run for run (a fixed seed, threads bit-identical to serial), so the
     // sizing is exactly the first run's; the garment is its re-drape on the 8 cm search mesh.
     const fs::path quick = dir / "quick";
-    const auto rs = run_drape("recover " + q(scene / "image_midday.png") + " --joints " + q(scene / "joints.json") +
-                              " --strokes " + q(scene / "strokes.png") +
-                              " --garment skirt --quality fast --particles 8 --generations 2 --output-drape search"
-                              " --out " + q(quick));
+    const auto recover_scene = [&](const std::string& flags, const fs::path& to) {
+        return run_drape("recover " + q(scene / "image_midday.png") + " --joints " + q(scene / "joints.json") +
+                         " --strokes " + q(scene / "strokes.png") + " --garment skirt --quality fast " + flags +
+                         " --out " + q(to));
+    };
+    const auto rs = recover_scene("--particles 8 --generations 2 --output-drape search", quick);
     INFO(rs.out);
     REQUIRE(rs.exit_code == 0);
     const nlohmann::json qr = read_json(quick / "result.json");
@@ -176,6 +190,22 @@ TEST_CASE("drape recover recovers a synthetic skirt at fast settings", "[apps][r
     const double qu = cv::countNonZero((qmask == 42) | (labels == 42));
     INFO("mask IoU: output " << inter / uni << ", search " << qi / qu);
     CHECK(qi / qu >= 0.75);
+
+    // Another measured fabric as the base of the material space: its tables, scaled.
+    const fs::path denim = dir / "denim";
+    const auto rd = recover_scene("--particles 4 --generations 1 --rounds 1 --base-fabric 11oz-black-denim "
+                                  "--min-ease 0 --output-drape search", denim);
+    INFO(rd.out);
+    REQUIRE((rd.exit_code == 0 || rd.exit_code == 1));
+    const nlohmann::json dr = read_json(denim / "result.json");
+    const auto& dm = dr["garments"][0]["material"];
+    CHECK(dr["base_fabric"] == "11oz-black-denim");
+    CHECK(dr["min_ease_cm"] == 0.0);
+    CHECK(dm["base_fabric"] == "11oz-black-denim");
+    const drape::cloth::Material denim_fabric = drape::cloth::builtin_material("11oz-black-denim");
+    CHECK(dm["density"].get<double>() == Approx(denim_fabric.density_kg_per_m2));
+    CHECK(dm["bending_scale"].get<double>() >= 1.0);
+    CHECK(dm["bending_scale"].get<double>() <= 100.0);
 
     const auto bad = run_drape("recover " + q(scene / "image_midday.png") + " --joints " + q(scene / "joints.json") +
                                " --output-drape best --out " + q(dir / "bad"));

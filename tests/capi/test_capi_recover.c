@@ -182,6 +182,24 @@ int main(int argc, char** argv) {
     CHECK(r == NULL);
     CHECK(strstr(drape_last_error_message(), "unknown output drape 'best'") != NULL);
     o.output_drape = "search";
+    /* The options added after output_drape: their defaults, then each bad value named. */
+    CHECK(o.material_target == NULL && o.base_fabric == NULL && o.joint_pose == 0);
+    CHECK(o.max_arm_elevation_degrees == 90.0 && o.min_ease_cm == 2.0);
+    o.base_fabric = "velvet";
+    CHECK(drape_recover(NULL, &in, &o, NULL, &r) == DRAPE_ERROR_INVALID_ARGUMENT && r == NULL);
+    CHECK(strstr(drape_last_error_message(), "base_fabric 'velvet' is not a measured fabric") != NULL);
+    o.base_fabric = "gray-interlock";
+    o.min_ease_cm = 12;
+    CHECK(drape_recover(NULL, &in, &o, NULL, &r) == DRAPE_ERROR_INVALID_ARGUMENT && r == NULL);
+    CHECK(strstr(drape_last_error_message(), "min_ease_cm must be in [-10, 10]") != NULL);
+    o.min_ease_cm = -3;
+    o.max_arm_elevation_degrees = -1;
+    CHECK(drape_recover(NULL, &in, &o, NULL, &r) == DRAPE_ERROR_INVALID_ARGUMENT && r == NULL);
+    CHECK(strstr(drape_last_error_message(), "max_arm_elevation_degrees must be in [0, 180]") != NULL);
+    o.max_arm_elevation_degrees = 120;
+    o.material_target = "guess";
+    CHECK(drape_recover(NULL, &in, &o, NULL, &r) == DRAPE_ERROR_INVALID_ARGUMENT && r == NULL);
+    o.material_target = "calibrated";
     st = drape_recover(NULL, &in, &o, NULL, &r);
     CHECK(st == DRAPE_OK || (st == DRAPE_ERROR_NO_CONVERGENCE && r != NULL));
     if (!r) return 1;
@@ -189,6 +207,12 @@ int main(int argc, char** argv) {
         char* g = NULL;
         CHECK(drape_recovery_garment_json(r, 0, &g) == DRAPE_OK);
         CHECK(g && strstr(g, "\"mesh\": \"search\"") != NULL);  /* dump(2): "key": value */
+        drape_free(g);
+        g = NULL;
+        CHECK(drape_recovery_json(r, &g) == DRAPE_OK);  /* the options the recovery ran with */
+        CHECK(g && strstr(g, "\"min_ease_cm\": -3.0") != NULL);
+        CHECK(g && strstr(g, "\"max_arm_elevation_degrees\": 120.0") != NULL);
+        CHECK(g && strstr(g, "\"base_fabric\": \"gray-interlock\"") != NULL);
         drape_free(g);
     }
     snprintf(folder, sizeof folder, "%s/result", argv[4]);

@@ -92,3 +92,18 @@ TEST_CASE("RecoverOptions: the least ease is checked and named", "[recover][sizi
         CHECK(why.find("min_ease_cm") != std::string::npos);
     }
 }
+
+TEST_CASE("RecoverOptions: the base fabric is a measured fabric", "[recover][options]") {
+    RecoverOptions o;
+    std::string why;
+    for (const char* name : {"gray-interlock", "11oz-black-denim", "ivory-rib-knit"}) {
+        o.base_fabric = name;
+        CHECK(o.is_valid(&why));
+    }
+    for (const char* bad : {"", "velvet", "Gray-Interlock"}) {
+        o.base_fabric = bad;
+        CHECK_FALSE(o.is_valid(&why));
+        CHECK(why.find("base_fabric '" + std::string(bad) + "' is not a measured fabric") != std::string::npos);
+        CHECK(why.find("camel-ponte-roma") != std::string::npos);  // the names it takes
+    }
+}

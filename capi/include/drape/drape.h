@@ -507,6 +507,19 @@ typedef struct drape_recover_options {
                                    drape, usable or not), "auto" (the search's re-drape where
                                    only that one is usable) or "search" (docs/recovery.md, step 7); a caller
                                    whose struct_size ends before it gets NULL */
+    /* Added after output_drape; a caller whose struct_size ends before a field gets its default. */
+    const char* material_target;       /* "calibrated" (NULL: K from the calibrated mapping of P) or
+                                          "synthesis" (P measured on renders of the candidate drapes;
+                                          docs/material-estimation.md) */
+    const char* base_fabric;           /* the base fabric of the material space, bending x1..x100: a
+                                          measured fabric's name (docs/materials.md); NULL = "gray-interlock" */
+    double max_arm_elevation_degrees;  /* upper arms raised more than this above hanging are lowered to
+                                          it before draping; [0, 180], 180 = off (90) */
+    double min_ease_cm;                /* the least ease, cm of girth over the fitted body, the sizing
+                                          search lets a garment reach; negative = smaller than the body,
+                                          stretched on it; [-10, 10] (2) */
+    int32_t joint_pose;                /* 1: search the pose of the joints under each garment together
+                                          with the material (paper Algorithm 2); 0 (default) */
 } drape_recover_options;
 DRAPE_API drape_status drape_recover_options_init(drape_recover_options* options);
 
