@@ -204,13 +204,6 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         if (!advance(previous, next)) {
             summary.message = "blending into the motion: " + summary.message;
             summary.seconds_blend = seconds_since(t_blend);
-    // The motion starts at its own pace (a walk at 1.2 m/s): the cloth is given the root's
-    // velocity of the first frame, as if it had been moving with the body, instead of being
-    // hit by it from rest (which left the front of a skirt 4 cm inside the legs).
-    if (K >= 2) {
-        const Eigen::Vector3d root_velocity = (frames.frames[1].translation - frames.frames[0].translation) * options.fps;
-        sim.set_velocities(sim.velocities().rowwise() + root_velocity.transpose());
-    }
             summary.seconds = seconds_since(start);
             return summary;
         }
