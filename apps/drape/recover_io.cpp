@@ -28,7 +28,7 @@ recover::RecoverOptions recover_options(const RecoverFlags& f, const std::string
     options.joint_pose_material = f.joint_pose;
     if (f.max_arm_elevation) options.max_arm_elevation_degrees = *f.max_arm_elevation;
     if (f.min_ease) options.min_ease_cm = *f.min_ease;
-    options.base_fabric = f.base_fabric;
+    if (f.base_fabric) options.base_fabric = *f.base_fabric;
     options.material_target = recover::material_target_from_name(f.material_target);
     options.output_drape = recover::output_drape_from_name(f.output_drape);
     struct Printer {

@@ -30,7 +30,7 @@ struct RecoverFlags {
     std::string output_drape = "output";  // output | auto | search
     std::optional<double> max_arm_elevation;
     std::optional<double> min_ease;
-    std::string base_fabric = "gray-interlock";
+    std::optional<std::string> base_fabric;
 };
 
 /// Adds the shared flags to a command.

@@ -4,7 +4,6 @@
 #include <drape/cloth/material.hpp>
 #include <drape/core/errors.hpp>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -153,11 +152,10 @@ bool RecoverOptions::is_valid(std::string* why) const {
                     ")");
     if (!(min_ease_cm >= -10 && min_ease_cm <= 10))
         return fail("min_ease_cm must be in [-10, 10] (got " + std::to_string(min_ease_cm) + ")");
-    const std::vector<std::string> fabrics = cloth::builtin_material_names();
-    if (std::find(fabrics.begin(), fabrics.end(), base_fabric) == fabrics.end()) {
-        std::string known;
-        for (const std::string& f : fabrics) known += (known.empty() ? "" : ", ") + f;
-        return fail("base_fabric '" + base_fabric + "' is not a measured fabric (" + known + ")");
+    try {
+        cloth::builtin_material_info(base_fabric);  // its error names the fabrics there are
+    } catch (const InvalidInput& e) {
+        return fail("base_fabric '" + base_fabric + "' is not a measured fabric: " + e.what());
     }
     return true;
 }
