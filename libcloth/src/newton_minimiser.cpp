@@ -15,6 +15,10 @@ namespace {
 // Self-contact candidates are collected this many thicknesses beyond the radius a Newton
 // iteration needs, so that they can be reused while the cloth moves less than half of it.
 constexpr double kCandidateMargin = 1.0;
+// Self-contact pairs whose own safe step is under this fraction of the obstacle's bound hold
+// the whole step back (two layers pressed together by the body); their closing motion is
+// removed from the Newton direction (docs/self-contact.md, "Pressed layers").
+constexpr double kHoldPairsBelow = 0.01;
 
 }  // namespace
 
@@ -290,11 +294,48 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                 if (d >= 0) dx(i, c) = step(d);
             }
         tc = Clock::now();
-        double alpha = obstacle_step_bound(dx);
-        if (use_self) alpha = std::min(alpha, self_contact.max_safe_step(p, dx * alpha, 0.9) * alpha);
+        const double obstacle_alpha = obstacle_step_bound(dx);
+        double alpha = obstacle_alpha;
+        double slope = -step.dot(rhs);
+        bool released = false;
+        if (use_self) {
+            std::vector<int> holding;
+            alpha = std::min(alpha, self_contact.max_safe_step(p, dx * obstacle_alpha, 0.9, 0.0, &holding,
+                                                               kHoldPairsBelow) * obstacle_alpha);
+            if (alpha < kHoldPairsBelow * obstacle_alpha && !holding.empty()) {
+                // Two layers pressed together: a global step length stops every vertex of the
+                // garment with them. Take the direction without the pairs' closing motion
+                // when it certifies a longer step and still descends.
+                std::vector<char> movable(static_cast<std::size_t>(p.rows()), 1);
+                for (Eigen::Index i = 0; i < p.rows(); ++i)
+                    for (int c = 0; c < 3; ++c)
+                        if (dof(static_cast<int>(i), c) < 0) movable[static_cast<std::size_t>(i)] = 0;
+                Eigen::MatrixX3d released_dx = dx;
+                if (self_contact.remove_closing_motion(p, released_dx, holding, movable) > 0) {
+                    double released_slope = 0;
+                    for (Eigen::Index i = 0; i < p.rows(); ++i)
+                        for (int c = 0; c < 3; ++c) {
+                            const int d = dof(static_cast<int>(i), c);
+                            if (d >= 0) released_slope -= released_dx(i, c) * rhs(d);
+                        }
+                    double released_alpha = obstacle_step_bound(released_dx);
+                    if (released_slope < 0 && released_alpha > alpha) {
+                        released_alpha = std::min(released_alpha,
+                                                  self_contact.max_safe_step(p, released_dx * released_alpha, 0.9) *
+                                                      released_alpha);
+                        if (released_alpha > alpha) {
+                            dx = released_dx;
+                            alpha = released_alpha;
+                            slope = released_slope;
+                            released = true;
+                            ++s.released_steps;
+                        }
+                    }
+                }
+            }
+        }
         s.seconds_contact += seconds_since(tc);
-        const double slope = -step.dot(rhs);
-        const bool pure_newton = alpha >= 1 && unregularised;
+        const bool pure_newton = alpha >= 1 && unregularised && !released;
         bool accepted = false, full_step = false;
         t0 = Clock::now();
         for (int k = 0; k <= options.max_line_search_halvings; ++k, alpha /= 2) {

@@ -154,7 +154,8 @@ double SelfContact::covered_radius(const Eigen::MatrixX3d& q) const {
 }
 
 double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx,
-                                  double fraction, double min_separation_m) const {
+                                  double fraction, double min_separation_m, std::vector<int>* limiting,
+                                  double limit_alpha) const {
     require(p.rows() == vertex_count_ && dx.rows() == vertex_count_,
             "SelfContact::max_safe_step: positions/dx have ", p.rows(), "/", dx.rows(),
             " rows, expected ", vertex_count_);
@@ -197,6 +198,10 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
         spread = translation_reduced_lengths(dx);
     }
     std::vector<double> chunk_alpha(chunk_count(n), 1.0);
+    // A pair is followed up to the larger of the best step so far and limit_alpha, so that
+    // every pair below limit_alpha is known.
+    if (!limiting) limit_alpha = 0;
+    std::vector<std::vector<int>> chunk_limiting(limiting ? chunk_alpha.size() : 0);
     for_each_chunk(n, [&](int c, int begin, int end) {
         double best = 1.0;
         for (int i = begin; i < end; ++i) {
@@ -221,7 +226,7 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
             if (!(d0 > 0)) continue;
             const double floor = floor_of(d0);
             double a = 0, dist = d0;
-            for (int iter = 0; iter < 64 && a < best; ++iter) {
+            for (int iter = 0; iter < 64 && a < std::max(best, limit_alpha); ++iter) {
                 const double step = (dist - floor) / l;
                 if (!(step > 0)) break;
                 a += step;
@@ -233,11 +238,71 @@ double SelfContact::max_safe_step(const Eigen::MatrixX3d& p, const Eigen::Matrix
                 if (dist - floor < 1e-3 * (d0 - floor)) break;  // converged onto the floor
             }
             best = std::min(best, a);
+            if (limiting && a < limit_alpha) chunk_limiting[static_cast<std::size_t>(c)].push_back(i);
         }
         chunk_alpha[c] = best;
     });
     for (double a : chunk_alpha) alpha = std::min(alpha, a);
+    if (limiting) {
+        limiting->clear();
+        for (const auto& list : chunk_limiting) limiting->insert(limiting->end(), list.begin(), list.end());
+    }
     return alpha;
+}
+
+int SelfContact::remove_closing_motion(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx,
+                                       const std::vector<int>& pairs, const std::vector<char>& movable,
+                                       int sweeps) const {
+    require(p.rows() == vertex_count_ && dx.rows() == vertex_count_ &&
+                movable.size() == static_cast<std::size_t>(vertex_count_),
+            "SelfContact::remove_closing_motion: positions/dx/movable have ", p.rows(), "/", dx.rows(), "/",
+            movable.size(), " rows, expected ", vertex_count_);
+    const int n = static_cast<int>(candidates_.size());
+    for (int i : pairs)
+        require(i >= 0 && i < n, "SelfContact::remove_closing_motion: pair ", i, " is out of range [0, ", n, ")");
+    // The closest-point weights and normals are those at p: the correction is first order.
+    struct Frame {
+        Eigen::Vector4d w;
+        Eigen::Vector3d n;
+        double w2;
+    };
+    std::vector<Frame> frames;
+    std::vector<int> kept;
+    for (int i : pairs) {
+        const ContactPair& pair = candidates_[static_cast<std::size_t>(i)];
+        const Mat34 x = gather(p, pair);
+        DistanceRegime regime;
+        if (!(pair_distance_squared(pair.kind, x, &regime) > 0)) continue;
+        Frame f;
+        f.w = regime_weights(regime, x);
+        const Eigen::Vector3d r = x * f.w;
+        if (!(r.norm() > 0)) continue;
+        f.n = r.normalized();
+        for (int k = 0; k < 4; ++k)
+            if (!movable[static_cast<std::size_t>(pair.v[static_cast<std::size_t>(k)])]) f.w(k) = 0;
+        f.w2 = f.w.squaredNorm();
+        if (!(f.w2 > 0)) continue;
+        frames.push_back(f);
+        kept.push_back(i);
+    }
+    int applied = 0;
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+        int changed = 0;
+        for (std::size_t j = 0; j < kept.size(); ++j) {
+            const ContactPair& pair = candidates_[static_cast<std::size_t>(kept[j])];
+            const Frame& f = frames[j];
+            Eigen::Vector3d closing = Eigen::Vector3d::Zero();
+            for (int k = 0; k < 4; ++k) closing += f.w(k) * dx.row(pair.v[static_cast<std::size_t>(k)]).transpose();
+            const double lambda = f.n.dot(closing) / f.w2;
+            if (!(lambda < 0)) continue;
+            for (int k = 0; k < 4; ++k)
+                dx.row(pair.v[static_cast<std::size_t>(k)]) -= (lambda * f.w(k)) * f.n.transpose();
+            ++changed;
+        }
+        applied += changed;
+        if (changed == 0) break;
+    }
+    return applied;
 }
 
 }  // namespace drape::cloth::internal

@@ -85,8 +85,22 @@ public:
     /// Returns 0 if dx moves the cloth non-rigidly and covered_radius(p) <= s (nothing can
     /// be certified; also before the first find_candidates), and 1 for a rigid translation.
     /// \param fraction in (0, 1]. \throw drape::InvalidInput on shape or range errors.
+    /// \param limiting if not null, receives (in candidate order) the candidates whose own
+    /// safe step is below `limit_alpha`: the pairs that hold the step back.
     double max_safe_step(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx,
-                         double fraction = 0.9, double min_separation_m = 0.0) const;
+                         double fraction = 0.9, double min_separation_m = 0.0,
+                         std::vector<int>* limiting = nullptr, double limit_alpha = 0.0) const;
+
+    /// Removes from dx, for each candidate in `pairs`, the part that closes the pair's gap
+    /// to first order, by the least-norm change: with the closest-point weights w and unit
+    /// normal n at p, Δx_c = −λ w_c n with λ = n · Σ_c w_c dx_c / Σ_c w_c², applied only
+    /// where the pair closes (λ < 0). A common motion of the pair is kept, so two layers
+    /// pressed together can still move with whatever presses them. Vertices with
+    /// movable[v] == 0 keep their dx (their weights count as 0). `sweeps` Gauss–Seidel passes
+    /// over the pairs, which share vertices. Returns how many pair corrections were applied.
+    /// \throw drape::InvalidInput on shape errors or an index out of range.
+    int remove_closing_motion(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx, const std::vector<int>& pairs,
+                              const std::vector<char>& movable, int sweeps = 3) const;
 
     /// Ignores pairs that are close in the rest shape: both primitives on the same pattern
     /// piece and closer than `min_distance_m` in pattern coordinates (vertex to triangle,

@@ -96,6 +96,7 @@ std::string StepSummary::brief_report() const {
        << seconds_contact * 1e3 << ")";
     os << ", " << factorisations << " factorisations (" << regularised_factorisations << " regularised)";
     if (substeps > 1) os << ", " << substeps << " substeps";
+    if (released_steps > 0) os << ", " << released_steps << " released pressed-layer steps";
     if (!message.empty()) os << "; " << message;
     return os.str();
 }
@@ -318,6 +319,7 @@ void accumulate(StepSummary& total, const StepSummary& part) {
     total.newton_iterations += part.newton_iterations;
     total.regularised_factorisations += part.regularised_factorisations;
     total.factorisations += part.factorisations;
+    total.released_steps += part.released_steps;
     total.seconds_assembly += part.seconds_assembly;
     total.seconds_solve += part.seconds_solve;
     total.seconds_contact += part.seconds_contact;

@@ -691,6 +691,87 @@ TEST_CASE("self-contact step bound is conservative", "[cloth][self_contact]") {
     CHECK_THROWS_AS(sc.max_safe_step(p, dx, 0.0, separation), drape::InvalidInput);
 }
 
+TEST_CASE("self-contact pressed layers: the closing motion is removed, the common motion kept",
+          "[cloth][self_contact]") {
+    const double gap = 0.004;
+    const ClothMesh mesh = test_fold(12, 0.1, gap, 0.0003, 5);
+    const Eigen::MatrixX3d& p = mesh.positions;
+    SelfContact sc(mesh.faces, mesh.vertex_count());
+    // The top layer is pressed down through the bottom one while the whole sheet slides
+    // along x: the pairs between the layers hold the step back.
+    const Eigen::RowVector3d slide(0.01, 0.004, 0);
+    Eigen::MatrixX3d dx(p.rows(), 3);
+    for (int i = 0; i < p.rows(); ++i) {
+        dx.row(i) = slide;
+        if (p(i, 2) > 0.75 * gap) dx(i, 2) = -6 * gap;
+    }
+    sc.find_candidates(p, 0.005 + 2 * dx.rowwise().norm().maxCoeff());
+    std::vector<int> holding;
+    const double limit = 0.5;
+    const double alpha = sc.max_safe_step(p, dx, 0.9, 0.0, &holding, limit);
+    INFO("alpha " << alpha << ", " << holding.size() << " holding pairs");
+    REQUIRE(alpha < 0.5);
+    REQUIRE(!holding.empty());
+    for (std::size_t k = 1; k < holding.size(); ++k) CHECK(holding[k] > holding[k - 1]);  // candidate order
+    // With no limit nothing is listed.
+    std::vector<int> none{7};
+    CHECK(sc.max_safe_step(p, dx, 0.9, 0.0, &none, 0.0) == alpha);
+    CHECK(none.empty());
+
+    // The first column of vertices (on the bottom layer) is pinned: its rows stay as they are.
+    std::vector<char> movable(static_cast<std::size_t>(p.rows()), 1);
+    for (int i = 0; i < p.rows(); ++i)
+        if (p(i, 0) < 0.005) movable[static_cast<std::size_t>(i)] = 0;
+    Eigen::MatrixX3d released = dx;
+    const int applied = sc.remove_closing_motion(p, released, holding, movable);
+    CHECK(applied > 0);
+    for (int i = 0; i < p.rows(); ++i)
+        if (!movable[static_cast<std::size_t>(i)]) CHECK((released.row(i) - dx.row(i)).norm() == 0.0);
+
+    // The pairs' closing rates along their normals fall to (nearly) zero; nothing moves apart
+    // faster than it did.
+    auto closing_rate = [&](int i, const Eigen::MatrixX3d& d) {
+        const ContactPair& pair = sc.candidates()[static_cast<std::size_t>(i)];
+        Mat34 x, dd;
+        for (int c = 0; c < 4; ++c) {
+            x.col(c) = p.row(pair.v[static_cast<std::size_t>(c)]).transpose();
+            dd.col(c) = d.row(pair.v[static_cast<std::size_t>(c)]).transpose();
+        }
+        DistanceRegime regime;
+        pair_distance_squared(pair.kind, x, &regime);
+        const Eigen::Vector4d w = regime_weights(regime, x);
+        return -(x * w).normalized().dot(dd * w);  // > 0: the gap closes
+    };
+    double before = 0, after = 0;
+    for (int i : holding) {
+        before = std::max(before, closing_rate(i, dx));
+        after = std::max(after, closing_rate(i, released));
+    }
+    INFO("largest closing rate before " << before << " m, after " << after << " m");
+    CHECK(before > 0.5 * gap);
+    CHECK(after < 0.01 * before);
+    // The slide survives: the vertices' mean motion along the layers is kept.
+    const Eigen::RowVector3d mean_before = dx.colwise().mean(), mean_after = released.colwise().mean();
+    CHECK(std::abs(mean_after(0) - mean_before(0)) < 0.02 * slide(0));
+    CHECK(std::abs(mean_after(1) - mean_before(1)) < 0.02 * slide(1));
+    // And the step that the released direction certifies is much longer.
+    const double released_alpha = sc.max_safe_step(p, released, 0.9, 0.0);
+    INFO("released alpha " << released_alpha);
+    CHECK(released_alpha > 3 * alpha);
+    for (int k = 1; k <= 8; ++k)
+        CHECK(min_pair_distance(sc, p + released_alpha * k / 8.0 * released, mesh.faces) > 0.05 * gap);
+
+    // Layers moving apart are left alone.
+    Eigen::MatrixX3d opening = -dx, untouched = -dx;
+    CHECK(sc.remove_closing_motion(p, untouched, holding, movable) == 0);
+    CHECK((untouched - opening).norm() == 0.0);
+    // Bad input is named.
+    CHECK_THROWS_AS(sc.remove_closing_motion(p, untouched, {static_cast<int>(sc.candidates().size())}, movable),
+                    drape::InvalidInput);
+    CHECK_THROWS_AS(sc.remove_closing_motion(p, untouched, holding, std::vector<char>(3, 1)),
+                    drape::InvalidInput);
+}
+
 TEST_CASE("self-contact benchmark: folded 64x64 grid", "[cloth][self_contact][.bench]") {
     using clock = std::chrono::steady_clock;
     auto ms = [](clock::time_point a, clock::time_point b) {

@@ -133,6 +133,9 @@ struct StepSummary {
     int substeps = 1;                    ///< > 1 when the step was split by halving
     int contacts = 0;                    ///< vertices within the thickness of the obstacle
     int self_contact_pairs = 0;          ///< active cloth–cloth pairs at the last iteration
+    /// Newton iterations whose direction lost the closing motion of pressed cloth layers
+    /// (pairs that held the step under 1 % of its length; docs/self-contact.md).
+    int released_steps = 0;
     double max_stitch_gap_m = 0;         ///< at the returned state
     double gradient_inf_norm_n = 0;      ///< at the returned state, free vertices only
     double tolerance_n = 0;              ///< the absolute tolerance that was used
