@@ -65,6 +65,7 @@ nlohmann::json animation_json(const garment::AnimateSummary& s) {
         frames.push_back({{"time_s", c.time_s},
                           {"max_penetration_m", c.max_penetration_m},
                           {"vertices_inside", c.vertices_inside},
+                          {"deepest_joint", c.deepest_joint},
                           {"self_intersections", c.self_intersections},
                           {"max_speed_m_per_s", c.max_speed_m_per_s},
                           {"newton_iterations", c.newton_iterations},

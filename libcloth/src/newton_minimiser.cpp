@@ -6,6 +6,7 @@
 #include <drape/core/errors.hpp>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 
 namespace drape::cloth {
@@ -15,10 +16,12 @@ namespace {
 // Self-contact candidates are collected this many thicknesses beyond the radius a Newton
 // iteration needs, so that they can be reused while the cloth moves less than half of it.
 constexpr double kCandidateMargin = 1.0;
-// Self-contact pairs whose own safe step is under this fraction of the obstacle's bound hold
-// the whole step back (two layers pressed together by the body); their closing motion is
-// removed from the Newton direction (docs/self-contact.md, "Pressed layers").
-constexpr double kHoldPairsBelow = 0.01;
+// When self-contact cuts the step under this fraction of the obstacle's bound (two layers
+// pressed together by the body, often sliding over each other), the pairs that hold it back
+// are released from the direction until the step is at least this long again, in at most
+// kReleaseRounds rounds (docs/self-contact.md, "Pressed layers").
+constexpr double kReleaseBelow = 0.1;
+constexpr int kReleaseRounds = 8;
 
 }  // namespace
 
@@ -298,39 +301,56 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         double alpha = obstacle_alpha;
         double slope = -step.dot(rhs);
         bool released = false;
+        Eigen::MatrixX3d released_dx;
         if (use_self) {
-            std::vector<int> holding;
-            alpha = std::min(alpha, self_contact.max_safe_step(p, dx * obstacle_alpha, 0.9, 0.0, &holding,
-                                                               kHoldPairsBelow) * obstacle_alpha);
-            if (alpha < kHoldPairsBelow * obstacle_alpha && !holding.empty()) {
+            alpha = std::min(alpha, self_contact.max_safe_step(p, dx * obstacle_alpha, 0.9) * obstacle_alpha);
+            if (alpha < kReleaseBelow * obstacle_alpha) {
                 // Two layers pressed together: a global step length stops every vertex of the
-                // garment with them. Take the direction without the pairs' closing motion
-                // when it certifies a longer step and still descends.
+                // garment with them. Take out the closing motion of the pairs that hold the
+                // step under kReleaseBelow of the obstacle's bound (more pairs each round, as
+                // the next ones come to hold it), and keep the direction that certifies the
+                // longest step while it still descends.
                 std::vector<char> movable(static_cast<std::size_t>(p.rows()), 1);
                 for (Eigen::Index i = 0; i < p.rows(); ++i)
                     for (int c = 0; c < 3; ++c)
                         if (dof(static_cast<int>(i), c) < 0) movable[static_cast<std::size_t>(i)] = 0;
-                Eigen::MatrixX3d released_dx = dx;
-                if (self_contact.remove_closing_motion(p, released_dx, holding, movable) > 0) {
-                    double released_slope = 0;
+                // Pairs that still hold the step after losing their closing motion (layers
+                // sliding over each other at a tiny gap) move as one instead.
+                std::vector<int> holding, together, more, merged;
+                Eigen::MatrixX3d trial_dx = dx;
+                double trial_alpha = alpha;
+                for (int round = 0; round < kReleaseRounds && trial_alpha < kReleaseBelow * obstacle_alpha; ++round) {
+                    self_contact.max_safe_step(p, trial_dx * obstacle_alpha, 0.9, 0.0, &more, kReleaseBelow);
+                    // Round 0 releases the closing motion of the pairs that hold the step;
+                    // from round 1 on, every pair that (still) holds it moves as one.
+                    std::vector<int>& grow = round == 0 ? holding : together;
+                    merged.clear();
+                    std::set_union(grow.begin(), grow.end(), more.begin(), more.end(), std::back_inserter(merged));
+                    const bool grown = merged.size() > grow.size();
+                    grow.swap(merged);
+                    if (!grown) break;  // nothing new holds it
+                    trial_dx = dx;
+                    self_contact.remove_closing_motion(p, trial_dx, holding, movable);
+                    if (!together.empty()) self_contact.move_pairs_together(trial_dx, together, movable);
+                    double trial_slope = 0;
                     for (Eigen::Index i = 0; i < p.rows(); ++i)
                         for (int c = 0; c < 3; ++c) {
                             const int d = dof(static_cast<int>(i), c);
-                            if (d >= 0) released_slope -= released_dx(i, c) * rhs(d);
+                            if (d >= 0) trial_slope -= trial_dx(i, c) * rhs(d);
                         }
-                    double released_alpha = obstacle_step_bound(released_dx);
-                    if (released_slope < 0 && released_alpha > alpha) {
-                        released_alpha = std::min(released_alpha,
-                                                  self_contact.max_safe_step(p, released_dx * released_alpha, 0.9) *
-                                                      released_alpha);
-                        if (released_alpha > alpha) {
-                            dx = released_dx;
-                            alpha = released_alpha;
-                            slope = released_slope;
-                            released = true;
-                            ++s.released_steps;
-                        }
+                    trial_alpha = obstacle_step_bound(trial_dx);
+                    trial_alpha = std::min(trial_alpha,
+                                           self_contact.max_safe_step(p, trial_dx * trial_alpha, 0.9) * trial_alpha);
+                    if (trial_slope < 0 && trial_alpha > alpha) {
+                        released_dx = trial_dx;
+                        alpha = trial_alpha;
+                        slope = trial_slope;
+                        released = true;
                     }
+                }
+                if (released) {
+                    dx = released_dx;
+                    ++s.released_steps;
                 }
             }
         }

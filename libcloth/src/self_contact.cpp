@@ -305,4 +305,43 @@ int SelfContact::remove_closing_motion(const Eigen::MatrixX3d& p, Eigen::MatrixX
     return applied;
 }
 
+int SelfContact::move_pairs_together(Eigen::MatrixX3d& dx, const std::vector<int>& pairs,
+                                     const std::vector<char>& movable, int sweeps) const {
+    require(dx.rows() == vertex_count_ && movable.size() == static_cast<std::size_t>(vertex_count_),
+            "SelfContact::move_pairs_together: dx/movable have ", dx.rows(), "/", movable.size(), " rows, expected ",
+            vertex_count_);
+    const int n = static_cast<int>(candidates_.size());
+    for (int i : pairs)
+        require(i >= 0 && i < n, "SelfContact::move_pairs_together: pair ", i, " is out of range [0, ", n, ")");
+    int applied = 0;
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+        double change = 0, scale = 0;
+        for (int i : pairs) {
+            const ContactPair& pair = candidates_[static_cast<std::size_t>(i)];
+            Eigen::RowVector3d target = Eigen::RowVector3d::Zero();
+            bool fixed = false;
+            for (int k = 0; k < 4; ++k) {
+                const int v = pair.v[static_cast<std::size_t>(k)];
+                if (!movable[static_cast<std::size_t>(v)]) {
+                    target = dx.row(v);
+                    fixed = true;
+                    break;
+                }
+                target += 0.25 * dx.row(v);
+            }
+            for (int k = 0; k < 4; ++k) {
+                const int v = pair.v[static_cast<std::size_t>(k)];
+                if (!movable[static_cast<std::size_t>(v)]) continue;
+                change = std::max(change, (dx.row(v) - target).norm());
+                scale = std::max(scale, target.norm());
+                dx.row(v) = target;
+            }
+            (void)fixed;
+            ++applied;
+        }
+        if (!(change > 1e-12 * scale)) break;
+    }
+    return applied;
+}
+
 }  // namespace drape::cloth::internal

@@ -102,6 +102,15 @@ public:
     int remove_closing_motion(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx, const std::vector<int>& pairs,
                               const std::vector<char>& movable, int sweeps = 3) const;
 
+    /// Makes each candidate in `pairs` move as one: its movable corners take the mean dx of
+    /// its corners (or, if a corner is not movable, that corner's dx), so the pair's distance
+    /// stays as it is along the step. For pressed pairs that still hold the step after
+    /// remove_closing_motion: layers sliding fast over each other at a tiny gap, which the
+    /// conservative bound cannot certify far. `sweeps` passes. Returns the corrections applied.
+    /// \throw drape::InvalidInput on shape errors or an index out of range.
+    int move_pairs_together(Eigen::MatrixX3d& dx, const std::vector<int>& pairs, const std::vector<char>& movable,
+                            int sweeps = 3) const;
+
     /// Ignores pairs that are close in the rest shape: both primitives on the same pattern
     /// piece and closer than `min_distance_m` in pattern coordinates (vertex to triangle,
     /// or edge to edge). Such pairs are neighbours within one layer, not two layers, and a

@@ -296,7 +296,11 @@ ContactReport Simulator::contact_report() const {
             r.min_obstacle_distance_m = std::min(r.min_obstacle_distance_m, q.signed_distance_m);
             if (q.signed_distance_m < 0) {
                 ++r.vertices_inside;
-                r.max_penetration_m = std::max(r.max_penetration_m, -q.signed_distance_m);
+                if (-q.signed_distance_m > r.max_penetration_m) {
+                    r.max_penetration_m = -q.signed_distance_m;
+                    r.deepest_vertex = static_cast<int>(i);
+                    r.deepest_obstacle_face = q.face;
+                }
             }
         }
     }

@@ -30,6 +30,18 @@ const char* termination_name(AnimateTermination t) {
     return "?";
 }
 
+// The joint that drives body face f most: the largest summed skin weight of its corners.
+std::string dominant_joint(const body::BodyModel& model, int f) {
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(body::kJointCount);
+    for (int c = 0; c < 3; ++c) {
+        const int v = model.faces(f, c);
+        for (int j = 0; j < body::kJointCount; ++j) w(j) += model.skin_weights.coeff(v, j);
+    }
+    Eigen::Index j = 0;
+    w.maxCoeff(&j);
+    return std::string(body::kJointNames[static_cast<std::size_t>(j)]);
+}
+
 double max_speed(const cloth::Simulator& sim) {
     return sim.velocities().rows() ? sim.velocities().rowwise().norm().maxCoeff() : 0.0;
 }
@@ -239,6 +251,7 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         const cloth::ContactReport report = sim.contact_report();
         check.max_penetration_m = report.max_penetration_m;
         check.vertices_inside = report.vertices_inside;
+        if (report.deepest_obstacle_face >= 0) check.deepest_joint = dominant_joint(model, report.deepest_obstacle_face);
         check.self_intersections = report.self_intersections;
         check.max_speed_m_per_s = max_speed(sim);
         check.newton_iterations = newton;

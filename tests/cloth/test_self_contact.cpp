@@ -761,6 +761,31 @@ TEST_CASE("self-contact pressed layers: the closing motion is removed, the commo
     for (int k = 1; k <= 8; ++k)
         CHECK(min_pair_distance(sc, p + released_alpha * k / 8.0 * released, mesh.faces) > 0.05 * gap);
 
+    // Pairs that move as one keep their distance: their corners share one displacement, so
+    // the bound certifies far more of the step than along the plain direction.
+    Eigen::MatrixX3d together = dx;
+    CHECK(sc.move_pairs_together(together, holding, movable) > 0);
+    double spread_before = 0, spread_after = 0;
+    for (int i : holding) {
+        const ContactPair& pair = sc.candidates()[static_cast<std::size_t>(i)];
+        Eigen::RowVector3d mean_dx = Eigen::RowVector3d::Zero(), mean_together = Eigen::RowVector3d::Zero();
+        for (int c = 0; c < 4; ++c) {
+            mean_dx += 0.25 * dx.row(pair.v[static_cast<std::size_t>(c)]);
+            mean_together += 0.25 * together.row(pair.v[static_cast<std::size_t>(c)]);
+        }
+        for (int c = 0; c < 4; ++c) {
+            spread_before = std::max(spread_before, (dx.row(pair.v[static_cast<std::size_t>(c)]) - mean_dx).norm());
+            spread_after =
+                std::max(spread_after, (together.row(pair.v[static_cast<std::size_t>(c)]) - mean_together).norm());
+        }
+    }
+    INFO("largest corner spread of a holding pair: " << spread_before << " m before, " << spread_after << " after");
+    CHECK(spread_after < 0.05 * spread_before);
+    for (int i = 0; i < p.rows(); ++i)
+        if (!movable[static_cast<std::size_t>(i)]) CHECK((together.row(i) - dx.row(i)).norm() == 0.0);
+    CHECK(sc.max_safe_step(p, together, 0.9, 0.0) > 3 * alpha);
+    CHECK_THROWS_AS(sc.move_pairs_together(together, {-1}, movable), drape::InvalidInput);
+
     // Layers moving apart are left alone.
     Eigen::MatrixX3d opening = -dx, untouched = -dx;
     CHECK(sc.remove_closing_motion(p, untouched, holding, movable) == 0);

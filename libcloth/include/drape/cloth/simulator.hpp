@@ -161,6 +161,8 @@ struct ContactReport {
     double min_obstacle_distance_m = 0;  ///< smallest signed distance (inf without obstacle)
     double max_stitch_gap_m = 0;    ///< largest |xa − xb| over the stitches
     int self_intersections = 0;     ///< intersecting pairs of non-adjacent cloth triangles
+    int deepest_vertex = -1;        ///< the deepest cloth vertex inside the obstacle (-1: none)
+    int deepest_obstacle_face = -1; ///< the obstacle face closest to it (-1: none)
 };
 
 /// A stitch of a seam: vertices a and b are pulled together and held.

@@ -71,6 +71,9 @@ struct AnimationFrameCheck {
     double time_s = 0;
     double max_penetration_m = 0;  ///< deepest garment vertex inside the body (>= 0)
     int vertices_inside = 0;
+    /// Where the deepest vertex is: the body joint that most drives the body surface it is
+    /// under (its closest face's skin weights), e.g. "left_shoulder"; empty when none is inside.
+    std::string deepest_joint;
     /// Intersecting pairs of non-adjacent cloth triangles of the whole outfit (within a
     /// garment and between garments): crossings.
     int self_intersections = 0;
