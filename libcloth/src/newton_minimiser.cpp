@@ -20,7 +20,7 @@ constexpr double kCandidateMargin = 1.0;
 // pressed together by the body, often sliding over each other), the pairs that hold it back
 // are released from the direction until the step is at least this long again, in at most
 // kReleaseRounds rounds (docs/self-contact.md, "Pressed layers").
-constexpr double kReleaseBelow = 0.1;
+constexpr double kReleaseBelow = 0.5;
 constexpr int kReleaseRounds = 8;
 
 }  // namespace

@@ -306,42 +306,59 @@ int SelfContact::remove_closing_motion(const Eigen::MatrixX3d& p, Eigen::MatrixX
 }
 
 int SelfContact::move_pairs_together(Eigen::MatrixX3d& dx, const std::vector<int>& pairs,
-                                     const std::vector<char>& movable, int sweeps) const {
+                                     const std::vector<char>& movable) const {
     require(dx.rows() == vertex_count_ && movable.size() == static_cast<std::size_t>(vertex_count_),
             "SelfContact::move_pairs_together: dx/movable have ", dx.rows(), "/", movable.size(), " rows, expected ",
             vertex_count_);
     const int n = static_cast<int>(candidates_.size());
     for (int i : pairs)
         require(i >= 0 && i < n, "SelfContact::move_pairs_together: pair ", i, " is out of range [0, ", n, ")");
-    int applied = 0;
-    for (int sweep = 0; sweep < sweeps; ++sweep) {
-        double change = 0, scale = 0;
-        for (int i : pairs) {
-            const ContactPair& pair = candidates_[static_cast<std::size_t>(i)];
-            Eigen::RowVector3d target = Eigen::RowVector3d::Zero();
-            bool fixed = false;
-            for (int k = 0; k < 4; ++k) {
-                const int v = pair.v[static_cast<std::size_t>(k)];
-                if (!movable[static_cast<std::size_t>(v)]) {
-                    target = dx.row(v);
-                    fixed = true;
-                    break;
-                }
-                target += 0.25 * dx.row(v);
+    // Pairs that share a vertex move as one group: label each corner with its group's root.
+    std::vector<int> root(static_cast<std::size_t>(vertex_count_), -1);
+    auto top = [&](int v) {
+        while (root[static_cast<std::size_t>(v)] != v) v = root[static_cast<std::size_t>(v)];
+        return v;
+    };
+    for (int i : pairs) {
+        const ContactPair& pair = candidates_[static_cast<std::size_t>(i)];
+        int r = -1;
+        for (int v : pair.v) {
+            if (root[static_cast<std::size_t>(v)] < 0) root[static_cast<std::size_t>(v)] = v;
+            const int t = top(v);
+            if (r >= 0 && t != r) {
+                const int low = std::min(t, r);
+                root[static_cast<std::size_t>(std::max(t, r))] = low;
+                r = low;
+            } else {
+                r = t;
             }
-            for (int k = 0; k < 4; ++k) {
-                const int v = pair.v[static_cast<std::size_t>(k)];
-                if (!movable[static_cast<std::size_t>(v)]) continue;
-                change = std::max(change, (dx.row(v) - target).norm());
-                scale = std::max(scale, target.norm());
-                dx.row(v) = target;
-            }
-            (void)fixed;
-            ++applied;
         }
-        if (!(change > 1e-12 * scale)) break;
     }
-    return applied;
+    // Per group: the displacement of a fixed corner if it has one, else the mean.
+    std::vector<Eigen::RowVector3d> sum(static_cast<std::size_t>(vertex_count_), Eigen::RowVector3d::Zero());
+    std::vector<int> count(static_cast<std::size_t>(vertex_count_), 0);
+    std::vector<char> fixed(static_cast<std::size_t>(vertex_count_), 0);
+    for (int v = 0; v < vertex_count_; ++v) {
+        if (root[static_cast<std::size_t>(v)] < 0) continue;
+        const auto g = static_cast<std::size_t>(top(v));
+        if (fixed[g]) continue;
+        if (!movable[static_cast<std::size_t>(v)]) {
+            sum[g] = dx.row(v);
+            count[g] = 1;
+            fixed[g] = 1;
+        } else {
+            sum[g] += dx.row(v);
+            ++count[g];
+        }
+    }
+    int moved = 0;
+    for (int v = 0; v < vertex_count_; ++v) {
+        if (root[static_cast<std::size_t>(v)] < 0 || !movable[static_cast<std::size_t>(v)]) continue;
+        const auto g = static_cast<std::size_t>(top(v));
+        dx.row(v) = sum[g] / count[g];
+        ++moved;
+    }
+    return moved;
 }
 
 }  // namespace drape::cloth::internal

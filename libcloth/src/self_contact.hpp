@@ -102,14 +102,14 @@ public:
     int remove_closing_motion(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx, const std::vector<int>& pairs,
                               const std::vector<char>& movable, int sweeps = 3) const;
 
-    /// Makes each candidate in `pairs` move as one: its movable corners take the mean dx of
-    /// its corners (or, if a corner is not movable, that corner's dx), so the pair's distance
-    /// stays as it is along the step. For pressed pairs that still hold the step after
+    /// Makes the candidates in `pairs` move as one: pairs that share a vertex form a group, and
+    /// every movable vertex of a group takes the group's mean dx (or, if the group has a vertex
+    /// that is not movable, that vertex's dx), so the distances within each group stay as they
+    /// are along the step. For pressed pairs that still hold the step after
     /// remove_closing_motion: layers sliding fast over each other at a tiny gap, which the
-    /// conservative bound cannot certify far. `sweeps` passes. Returns the corrections applied.
+    /// conservative bound cannot certify far. Returns how many vertices were changed.
     /// \throw drape::InvalidInput on shape errors or an index out of range.
-    int move_pairs_together(Eigen::MatrixX3d& dx, const std::vector<int>& pairs, const std::vector<char>& movable,
-                            int sweeps = 3) const;
+    int move_pairs_together(Eigen::MatrixX3d& dx, const std::vector<int>& pairs, const std::vector<char>& movable) const;
 
     /// Ignores pairs that are close in the rest shape: both primitives on the same pattern
     /// piece and closer than `min_distance_m` in pattern coordinates (vertex to triangle,
