@@ -44,8 +44,11 @@ struct WalkOptions {
     double hip_swing_rad = 0.38;     ///< hip flexion amplitude (±), in [0, 1]
     double knee_swing_rad = 0.65;    ///< largest knee flexion in swing, in [0, 1.5]
     double arm_swing_rad = 0.3;      ///< shoulder swing amplitude (±), in [0, 1]
-    /// Arms lowered from the rest A-pose towards the sides (as NamedPose::arms_down), rad.
-    double arm_lowering_rad = 0.42;
+    /// Arms lowered from the rest A-pose towards the sides, rad. 0.25 keeps the armpit open
+    /// on the median body through the swing: arm and trunk surfaces that are 3 cm apart at
+    /// rest stay 16 mm apart (0.42, as NamedPose::arms_down, closed them to 6 mm, less than
+    /// a sleeve and a side panel with their contact layers need; docs/animation.md).
+    double arm_lowering_rad = 0.25;
     double bob_m = 0.012;            ///< vertical bounce of the pelvis (peak to peak / 2), >= 0
     /// The body moves forward (+Z) at the speed the stride gives (no foot sliding to first
     /// order: stride = 2 × leg length × sin(hip swing) per step). false: walks in place.

@@ -48,7 +48,7 @@ struct AnimateOptions {
     double max_body_step_m = 5e-3;
     int min_substeps = 2;
     int max_substeps = 8;
-    /// The simulator: DrapeOptions::default_simulator_options() with gravity along −Y, 4
+    /// The simulator: DrapeOptions::default_simulator_options() with gravity along −Y, 8
     /// Newton iterations per step and light air drag (0.5 N·s/m³: a skirt walking at 1 m/s
     /// is not blown back as by the draping's 2). Its time step is set from fps and substeps.
     cloth::SimulatorOptions simulator = default_simulator_options();
