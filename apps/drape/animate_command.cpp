@@ -153,8 +153,8 @@ void run_eval_animate(const std::string& out, double seconds, double fps, double
     const body::Motion walk = body::walk_cycle(shaped.joints, seconds, fps);
     const cloth::Material fabric = cloth::builtin_material("gray-interlock");
     nlohmann::json results = nlohmann::json::array();
-    std::printf("| case | vertices | substeps | frames | max penetration (mm) | max crossings | max speed (m/s) | s/frame (wall) | CPU s/frame | usable |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("| case | vertices | substeps | frames | max penetration (mm) | max crossings | max slip (cm) | max speed (m/s) | s/frame (wall) | CPU s/frame | usable |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const EvalCase& c : cases) {
         if (!only.empty() && c.name != only) continue;
         std::vector<garment::GarmentRequest> requests;
@@ -180,12 +180,12 @@ void run_eval_animate(const std::string& out, double seconds, double fps, double
             if (s.termination == garment::AnimateTermination::cancelled) throw CommandExit{130, "cancelled"};
             r["animation"] = io::animation_json(s);
             r["wind_m_per_s"] = {c.wind.x(), c.wind.y(), c.wind.z()};
-            std::printf("| %s | %d | %d | %d | %.2f | %d | %.2f | %.3f | %.3f | %s |\n", c.name.c_str(), s.vertices,
+            std::printf("| %s | %d | %d | %d | %.2f | %d | %.1f | %.2f | %.3f | %.3f | %s |\n", c.name.c_str(), s.vertices,
                         s.checks.size() > 1 ? s.checks[1].substeps : 0, s.frames, s.max_penetration_m * 1e3,
-                        s.max_self_intersections, s.max_speed_m_per_s, s.seconds_per_frame, s.cpu_seconds_per_frame,
+                        s.max_self_intersections, s.max_slip_m * 1e2, s.max_speed_m_per_s, s.seconds_per_frame, s.cpu_seconds_per_frame,
                         s.usable() ? "yes" : "NO");
         } else {
-            std::printf("| %s | - | - | 0 | - | - | - | - | - | NO (drape: %s) |\n", c.name.c_str(), ds.message.c_str());
+            std::printf("| %s | - | - | 0 | - | - | - | - | - | - | NO (drape: %s) |\n", c.name.c_str(), ds.message.c_str());
         }
         std::fflush(stdout);
         results.push_back(r);

@@ -68,6 +68,7 @@ nlohmann::json animation_json(const garment::AnimateSummary& s) {
                           {"deepest_joint", c.deepest_joint},
                           {"self_intersections", c.self_intersections},
                           {"max_speed_m_per_s", c.max_speed_m_per_s},
+                          {"max_slip_m", c.max_slip_m},
                           {"newton_iterations", c.newton_iterations},
                           {"seconds", c.seconds},
                           {"cpu_seconds", c.cpu_seconds}});
@@ -80,6 +81,7 @@ nlohmann::json animation_json(const garment::AnimateSummary& s) {
             {"max_penetration_m", s.max_penetration_m},
             {"max_self_intersections", s.max_self_intersections},
             {"max_speed_m_per_s", s.max_speed_m_per_s},
+            {"max_slip_m", s.max_slip_m},
             {"seconds_blend", s.seconds_blend},
             {"seconds_per_frame", s.seconds_per_frame},
             {"cpu_seconds_per_frame", s.cpu_seconds_per_frame},

@@ -41,6 +41,7 @@ void Simulator::Impl::update_obstacle_contacts(const Eigen::MatrixX3d& p) {
         if (!q.found && previous < query_radius)
             q = obstacle->closest(p.row(i).transpose(), kLostContactRadius);
         if (!q.found) return;
+        c.face = q.face;
         c.point = q.point;
         c.normal = q.normal;
         c.distance = q.signed_distance_m;
@@ -69,9 +70,27 @@ void Simulator::Impl::lag_friction() {
     friction.clear();
     if (!friction_active() || !obstacle || options.obstacle_friction <= 0) return;
     const double h = options.contact_thickness_m;
-    for (const VertexContact& c : contacts)
-        if (c.vertex >= 0 && c.stiffness > 0 && c.distance < h)
-            friction.push_back({c.vertex, c.normal, c.stiffness * (h - std::max(c.distance, 0.0))});
+    const Eigen::MatrixX3d& now = obstacle->positions();
+    const bool moved = obstacle_start.rows() == now.rows() && step_dt > 0;
+    for (const VertexContact& c : contacts) {
+        if (!(c.vertex >= 0 && c.stiffness > 0 && c.distance < h)) continue;
+        FrictionContact f{c.vertex, c.normal, c.stiffness * (h - std::max(c.distance, 0.0))};
+        if (moved && c.face >= 0) {
+            // The closest point's barycentric weights on its triangle carry the corners' motion.
+            const Eigen::Vector3i t = obstacle->faces().row(c.face).transpose();
+            const Eigen::Vector3d a = now.row(t(0)).transpose(), e1 = now.row(t(1)).transpose() - a,
+                                  e2 = now.row(t(2)).transpose() - a, r = c.point - a;
+            const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), det = d11 * d22 - d12 * d12;
+            if (det > 0) {
+                const double wb = (d22 * e1.dot(r) - d12 * e2.dot(r)) / det;
+                const double wc = (d11 * e2.dot(r) - d12 * e1.dot(r)) / det;
+                const Eigen::Vector3d w(1 - wb - wc, wb, wc);
+                for (int k = 0; k < 3; ++k)
+                    f.surface_motion += w(k) * (now.row(t(k)) - obstacle_start.row(t(k))).transpose();
+            }
+        }
+        friction.push_back(f);
+    }
 }
 
 void Simulator::Impl::drop_released_friction() {

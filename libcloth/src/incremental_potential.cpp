@@ -229,7 +229,7 @@ double Simulator::Impl::potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gr
     if (friction_active())
         for (const FrictionContact& c : friction) {
             const int i = c.vertex;
-            e += friction_energy((p.row(i) - step_start.row(i)).transpose(), c.normal, c.normal_force,
+            e += friction_energy((p.row(i) - step_start.row(i)).transpose() - c.surface_motion, c.normal, c.normal_force,
                                  options.obstacle_friction, eps, want_g ? &gf : nullptr,
                                  want_h ? &hf : nullptr);
             if (want_g || want_h)

@@ -201,14 +201,20 @@ void Simulator::set_pinned_position(int vertex, const Eigen::Vector3d& position_
 
 const std::vector<bool>& Simulator::pinned() const { return impl_->pinned; }
 
-void Simulator::set_obstacle(Obstacle obstacle) { impl_->obstacle = std::move(obstacle); }
+void Simulator::set_obstacle(Obstacle obstacle) {
+    impl_->obstacle = std::move(obstacle);
+    impl_->obstacle_start = impl_->obstacle->positions();
+}
 
 void Simulator::move_obstacle(const Eigen::MatrixX3d& positions_m) {
     require(impl_->obstacle.has_value(), "Simulator::move_obstacle: there is no obstacle");
     impl_->obstacle->set_positions(positions_m);
 }
 
-void Simulator::clear_obstacle() { impl_->obstacle.reset(); }
+void Simulator::clear_obstacle() {
+    impl_->obstacle.reset();
+    impl_->obstacle_start.resize(0, 3);
+}
 
 const Obstacle* Simulator::obstacle() const {
     return impl_->obstacle ? &*impl_->obstacle : nullptr;
@@ -365,6 +371,7 @@ StepSummary Simulator::Impl::backward_euler(double h, int halvings_left) {
     if (s.usable()) {
         m.v = (p - m.x) / h;
         m.x = p;
+        if (m.obstacle) m.obstacle_start = m.obstacle->positions();
         return s;
     }
     m.stitch_rest = rest_before;
@@ -401,6 +408,7 @@ StepSummary Simulator::solve_static() {
     if (s.termination != StepTermination::non_finite) {
         m.x = p;
         m.v.setZero();
+        if (m.obstacle) m.obstacle_start = m.obstacle->positions();  // its motion so far is settled
     }
     return s;
 }

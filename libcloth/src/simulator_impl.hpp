@@ -58,6 +58,7 @@ struct DisjointSets {
 // A body-contact record of one free vertex for the current Newton iteration.
 struct VertexContact {
     int vertex = -1;
+    int face = -1;  // the obstacle's closest triangle
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
     double distance = std::numeric_limits<double>::infinity();  // signed, at query time
@@ -70,6 +71,9 @@ struct FrictionContact {
     int vertex = -1;
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
     double normal_force = 0;  // λ
+    // How far the obstacle's surface under the vertex moved into this step (since the last
+    // step ended): the slip is measured against it, so a moving body carries the cloth.
+    Eigen::Vector3d surface_motion = Eigen::Vector3d::Zero();
 };
 
 // Lagged friction between two cloth layers: a self-contact pair's frame and penalty force
@@ -105,6 +109,9 @@ struct Simulator::Impl {
     std::vector<BendingCurve> bend_curves;       // per hinge, fixed: bending is conservative
 
     std::optional<Obstacle> obstacle;
+    // The obstacle's positions when the last step ended (or when it was set): friction slips
+    // relative to the surface's motion since then (FrictionContact::surface_motion).
+    Eigen::MatrixX3d obstacle_start;
     std::vector<Stitch> stitches;
     std::vector<double> stitch_rest;  // current rest length per stitch
     internal::SelfContact self_contact{Eigen::MatrixX3i(0, 3), 0};

@@ -91,7 +91,8 @@ std::string AnimateSummary::brief_report() const {
     std::ostringstream os;
     os << (usable() ? "animation usable" : "animation NOT usable") << " (" << termination_name(termination)
        << "): " << frames << " frames, " << vertices << " vertices; max penetration " << max_penetration_m * 1e3
-       << " mm, max crossings " << max_self_intersections << ", max speed " << max_speed_m_per_s << " m/s; "
+       << " mm, max crossings " << max_self_intersections << ", max slip " << max_slip_m * 1e2 << " cm, max speed "
+       << max_speed_m_per_s << " m/s; "
        << seconds_per_frame << " s/frame (CPU " << cpu_seconds_per_frame << " s), blend " << seconds_blend << " s, total " << seconds << " s";
     if (!message.empty()) os << " (" << message << ")";
     return os.str();
@@ -171,6 +172,26 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
     AnimateSummary summary;
     summary.vertices = int(sim.positions().rows());
     summary.penetration_tolerance_m = options.penetration_tolerance_m;
+    // Each garment's top (its vertices within kTopBandM of its highest point: a waistband,
+    // the shoulders), each vertex with the body vertex nearest to it as draped: the slip is
+    // how far the top sank relative to those body points (AnimationFrameCheck::max_slip_m),
+    // which follow the pelvis's bob and turn.
+    constexpr double kTopBandM = 0.02;
+    struct TopPoint {
+        int cloth = 0, body = 0;
+        double height = 0;  // cloth y − body y as draped
+    };
+    std::vector<std::vector<TopPoint>> tops(n);
+    for (std::size_t g = 0; g < n; ++g) {
+        const Eigen::MatrixX3d& P = outfit.positions[g];
+        const double top = P.col(1).maxCoeff();
+        for (Eigen::Index v = 0; v < P.rows(); ++v) {
+            if (P(v, 1) < top - kTopBandM) continue;
+            Eigen::Index b = 0;
+            (body.rowwise() - P.row(v)).rowwise().squaredNorm().minCoeff(&b);
+            tops[g].push_back({first[g] + int(v), int(b), P(v, 1) - body(b, 1)});
+        }
+    }
     const auto garment_frame = [&]() {
         std::vector<Eigen::MatrixX3d> gs(n);
         const Eigen::MatrixX3d& x = sim.positions();
@@ -256,6 +277,13 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         if (report.deepest_obstacle_face >= 0) check.deepest_joint = dominant_joint(model, report.deepest_obstacle_face);
         check.self_intersections = report.self_intersections;
         check.max_speed_m_per_s = max_speed(sim);
+        std::vector<Eigen::MatrixX3d> garments = garment_frame();
+        for (std::size_t g = 0; g < n; ++g) {
+            double sunk = 0;
+            for (const TopPoint& t : tops[g])
+                sunk += t.height - (sim.positions()(vertex_of[std::size_t(t.cloth)], 1) - body(t.body, 1));
+            check.max_slip_m = std::max(check.max_slip_m, sunk / double(std::max<std::size_t>(tops[g].size(), 1)));
+        }
         check.newton_iterations = newton;
         check.seconds = seconds_since(t_frame);
         check.cpu_seconds = double(std::clock() - c_frame) / CLOCKS_PER_SEC;
@@ -265,7 +293,8 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
         summary.max_penetration_m = std::max(summary.max_penetration_m, check.max_penetration_m);
         summary.max_self_intersections = std::max(summary.max_self_intersections, check.self_intersections);
         summary.max_speed_m_per_s = std::max(summary.max_speed_m_per_s, check.max_speed_m_per_s);
-        out.frames.push_back(garment_frame());
+        summary.max_slip_m = std::max(summary.max_slip_m, check.max_slip_m);
+        out.frames.push_back(std::move(garments));
         summary.frames = k + 1;
         if (options.on_progress && !options.on_progress({false, k + 1, K, seconds_since(start)})) {
             summary.termination = AnimateTermination::cancelled;

@@ -605,6 +605,75 @@ TEST_CASE("obstacle friction ends when a vertex leaves the contact layer within 
     CHECK(d.col(0).mean() <= 1.0 * options.time_step_s + 1e-6);  // friction never pushes it
 }
 
+TEST_CASE("obstacle friction carries cloth along a moving obstacle, and holds it on a still one",
+          "[cloth][contact][friction]") {
+    // A 0.2 m patch rests on a horizontal plate under gravity. The plate then slides along +X
+    // at 0.3 m/s for 0.4 s (12 cm). Friction acts on the slip relative to the plate's surface:
+    // with mu = 0.6 the patch reaches the plate's speed within about 0.3 / (0.6 g) = 0.05 s and
+    // rides on it, so it travels nearly as far as the plate (about 12 cm less the 0.8 cm slip
+    // while it catches up). Friction measured against the patch's motion in the world instead
+    // (the plate's motion ignored) holds it where it lies: it would not move at all. Without
+    // friction it stays where it is, as nothing else pushes it sideways. Going back and forth
+    // does not make it creep: a plate that bobs up and down 2 cm carries the patch up and down
+    // with it and leaves it where it was sideways.
+    const auto plate = [](double x, double z) {
+        Eigen::MatrixX3d v(4, 3);
+        v << -1 + x, -1, z, 1 + x, -1, z, 1 + x, 1, z, -1 + x, 1, z;
+        return v;
+    };
+    Eigen::MatrixX3i quad(2, 3);
+    quad << 0, 1, 2, 0, 2, 3;
+    const auto run = [&](double mu, double speed) {
+        SimulatorOptions options;
+        options.obstacle_friction = mu;
+        const double h = options.contact_thickness_m;
+        ClothMesh m = make_square_grid(6, 0.2, Eigen::Vector3d(-0.1, -0.1, 0.5 * h), Eigen::Vector3d::UnitX(),
+                                       Eigen::Vector3d::UnitY());
+        Simulator sim(m, drape::test::gray_interlock_material(), options);
+        sim.set_obstacle(Obstacle(plate(0, 0), quad));
+        for (int k = 0; k < 20; ++k) REQUIRE(sim.step().usable());  // settles on the plate
+        const Eigen::MatrixX3d start = sim.positions();
+        const int steps = static_cast<int>(std::lround(0.4 / options.time_step_s));
+        for (int k = 1; k <= steps; ++k) {
+            sim.move_obstacle(plate(speed * k * options.time_step_s, 0));
+            const StepSummary s = sim.step();
+            INFO("step " << k << ": " << s.brief_report());
+            REQUIRE(s.usable());
+        }
+        return Eigen::RowVector3d((sim.positions() - start).colwise().mean());
+    };
+    const Eigen::RowVector3d carried = run(0.6, 0.3), frictionless = run(0.0, 0.3);
+    INFO("mu 0.6: moved " << 1000 * carried << " mm; mu 0: " << 1000 * frictionless << " mm");
+    CHECK(carried.x() > 0.105);
+    CHECK(carried.x() < 0.12 + 1e-3);
+    CHECK(std::abs(carried.y()) < 1e-3);
+    CHECK(std::abs(frictionless.x()) < 2e-3);
+
+    // Bobbing: 2 cm up and down twice a second for 1 s, the patch carried by the contact.
+    SimulatorOptions options;
+    options.obstacle_friction = 0.6;
+    ClothMesh m = make_square_grid(6, 0.2, Eigen::Vector3d(-0.1, -0.1, 0.5 * options.contact_thickness_m),
+                                   Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+    Simulator sim(m, drape::test::gray_interlock_material(), options);
+    sim.set_obstacle(Obstacle(plate(0, 0), quad));
+    for (int k = 0; k < 20; ++k) REQUIRE(sim.step().usable());
+    const Eigen::MatrixX3d start = sim.positions();
+    const int steps = static_cast<int>(std::lround(1.0 / options.time_step_s));
+    double highest = -1;
+    for (int k = 1; k <= steps; ++k) {
+        const double t = k * options.time_step_s, z = 0.01 * (1 - std::cos(4 * kPi * t));
+        sim.move_obstacle(plate(0, z));
+        REQUIRE(sim.step().usable());
+        highest = std::max(highest, (sim.positions() - start).col(2).mean());
+    }
+    const Eigen::RowVector3d bobbed = (sim.positions() - start).colwise().mean();
+    INFO("after bobbing: moved " << 1000 * bobbed << " mm, highest " << 1000 * highest << " mm");
+    CHECK(highest > 0.018);
+    CHECK(std::abs(bobbed.z()) < 2e-3);
+    CHECK(std::abs(bobbed.x()) < 1e-3);
+    CHECK(std::abs(bobbed.y()) < 1e-3);
+}
+
 TEST_CASE("a patch pinched between two facing surfaces comes to rest between them", "[cloth][contact]") {
     // Two obstacle planes 8 mm apart face each other (z = 0 facing up, z = 8 mm facing
     // down), closer than twice the 5 mm contact layer; a patch lies in the middle, without

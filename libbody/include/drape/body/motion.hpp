@@ -50,8 +50,10 @@ struct WalkOptions {
     /// a sleeve and a side panel with their contact layers need; docs/animation.md).
     double arm_lowering_rad = 0.25;
     double bob_m = 0.012;            ///< vertical bounce of the pelvis (peak to peak / 2), >= 0
-    /// The body moves forward (+Z) at the speed the stride gives (no foot sliding to first
-    /// order: stride = 2 × leg length × sin(hip swing) per step). false: walks in place.
+    /// The body moves forward (+Z) at the speed of the stance foot relative to the hip: the
+    /// hips swing at a nearly steady rate through each half cycle (reversing smoothly at the
+    /// ends), so the stance foot stays nearly still on the ground (a sinusoidal swing made it
+    /// skate 0.9 m/s). false: walks in place.
     bool forward = true;
     bool is_valid(std::string* why = nullptr) const;
 };

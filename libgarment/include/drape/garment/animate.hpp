@@ -78,6 +78,11 @@ struct AnimationFrameCheck {
     /// garment and between garments): crossings.
     int self_intersections = 0;
     double max_speed_m_per_s = 0;  ///< fastest garment vertex
+    /// How far a garment has sunk down the body since it was draped (the most of any
+    /// garment, >= 0): the mean drop of its top (the vertices within 2 cm of its highest
+    /// point as draped: a waistband, the shoulders) relative to the body vertex nearest to
+    /// each as draped, which moves with the body.
+    double max_slip_m = 0;
     int substeps = 0;              ///< simulation steps into this frame (0 for the first)
     int newton_iterations = 0;     ///< over the frame's steps
     double seconds = 0;            ///< wall time of the frame (simulation + checks)
@@ -102,6 +107,7 @@ struct AnimateSummary {
     double max_penetration_m = 0;       ///< over all frames
     int max_self_intersections = 0;     ///< over all frames
     double max_speed_m_per_s = 0;       ///< over all frames
+    double max_slip_m = 0;              ///< over all frames
     double seconds_blend = 0;           ///< the blend into the motion
     double seconds = 0;                 ///< the whole call
     double seconds_per_frame = 0;       ///< mean over the output frames (simulation + checks)
@@ -109,6 +115,7 @@ struct AnimateSummary {
     double penetration_tolerance_m = 2e-3;  ///< copied from the options, for usable()
 
     /// Completed, no frame deeper in the body than the tolerance, no crossing in any frame.
+    /// (The slip is reported, not judged: docs/animation.md, "Garments sinking".)
     bool usable() const {
         return termination == AnimateTermination::completed && max_penetration_m <= penetration_tolerance_m &&
                max_self_intersections == 0;
