@@ -22,7 +22,7 @@ double plane_contact_energy(const Eigen::Vector3d& x, const Eigen::Vector3d& poi
 
 double friction_energy(const Eigen::Vector3d& displacement_m, const Eigen::Vector3d& normal,
                        double normal_force_n, double friction, double epsilon_m,
-                       Eigen::Vector3d* gradient, Eigen::Matrix3d* hessian) {
+                       Eigen::Vector3d* gradient, Eigen::Matrix3d* hessian, double majorize_above_m) {
     const double scale = friction * normal_force_n;
     const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - normal * normal.transpose();
     const Eigen::Vector3d u = tangent * displacement_m;
@@ -30,7 +30,10 @@ double friction_energy(const Eigen::Vector3d& displacement_m, const Eigen::Vecto
     const double eps = epsilon_m;
     if (y >= eps) {
         if (gradient) *gradient = scale * u / y;
-        if (hessian) *hessian = scale / y * (tangent - u * u.transpose() / (y * y));
+        if (hessian) {
+            *hessian = scale / y * tangent;
+            if (y <= majorize_above_m) *hessian -= scale / (y * y * y) * u * u.transpose();
+        }
         return scale * y;
     }
     // f₀(y) = −y³/(3ε²) + y²/ε + ε/3;  f₁ = f₀' = −y²/ε² + 2y/ε;  f₁/y = 2/ε − y/ε².

@@ -231,7 +231,7 @@ double Simulator::Impl::potential(const Eigen::MatrixX3d& p, Eigen::VectorXd* gr
             const int i = c.vertex;
             e += friction_energy((p.row(i) - step_start.row(i)).transpose() - c.surface_motion, c.normal, c.normal_force,
                                  options.obstacle_friction, eps, want_g ? &gf : nullptr,
-                                 want_h ? &hf : nullptr);
+                                 want_h ? &hf : nullptr, options.friction_majorize_slip_m);
             if (want_g || want_h)
                 scatter(&i, 1, want_g ? gf.data() : nullptr, want_h ? hf.data() : nullptr,
                         want_h ? vertex_slots.data() + 9 * i : nullptr);

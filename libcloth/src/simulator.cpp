@@ -74,6 +74,9 @@ bool SimulatorOptions::is_valid(std::string* why) const {
     if (!(std::isfinite(friction_slip_speed_m_per_s) && friction_slip_speed_m_per_s > 0))
         return fail(detail::concat("friction_slip_speed_m_per_s = ", friction_slip_speed_m_per_s,
                                    " must be > 0"));
+    if (std::isnan(friction_majorize_slip_m) || friction_majorize_slip_m < 0)
+        return fail(detail::concat("friction_majorize_slip_m = ", friction_majorize_slip_m,
+                                   " must be >= 0 (infinity: the exact friction Hessian)"));
     if (!(std::isfinite(stitch_stiffness_n_per_m2) && stitch_stiffness_n_per_m2 > 0))
         return fail(detail::concat("stitch_stiffness_n_per_m2 = ", stitch_stiffness_n_per_m2,
                                    " must be > 0"));

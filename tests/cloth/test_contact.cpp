@@ -145,6 +145,51 @@ TEST_CASE("friction energy: finite differences in the static and sliding regimes
     }
 }
 
+TEST_CASE("friction energy: above the majorize threshold the Hessian is a quadratic majorizer, exact below",
+          "[cloth][contact][friction]") {
+    // SimulatorOptions::friction_majorize_slip_m: a slide longer than the threshold gets
+    // μλ/|u| (I − nnᵀ); then E(d + s) <= E(d) + g·s + ½ sᵀ H s for every s (the model never
+    // under-estimates the energy, so Newton's step is bounded; up to μλε/3, the smoothing's
+    // excess over |u| where the slide ends within ε of zero), with the same energy and
+    // gradient. At or below the threshold the exact Hessian is returned unchanged.
+    const Eigen::Vector3d n = Eigen::Vector3d(-0.3, 0.2, 1).normalized();
+    const double lambda = 0.05, mu = 0.3, eps = 1e-5, threshold = 5e-4;
+    std::mt19937 rng(11);
+    std::normal_distribution<double> u(0, 1);
+    int majorized = 0, exact = 0;
+    for (double scale : {0.3 * threshold, 0.9 * threshold, 1.5 * threshold, 20 * threshold}) {
+        for (int trial = 0; trial < 10; ++trial) {
+            const Eigen::Vector3d d = scale * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+            const double slide = (d - n.dot(d) * n).norm();
+            Eigen::Vector3d g, g_exact;
+            Eigen::Matrix3d H, H_exact;
+            const double e0 = friction_energy(d, n, lambda, mu, eps, &g, &H, threshold);
+            CHECK(e0 == friction_energy(d, n, lambda, mu, eps, &g_exact, &H_exact));
+            CHECK(g == g_exact);
+            CHECK(H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff() >= -1e-9 * H.norm());
+            if (slide <= threshold) {
+                CHECK(H == H_exact);
+                ++exact;
+                continue;
+            }
+            ++majorized;
+            const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - n * n.transpose();
+            CHECK((H - mu * lambda / slide * tangent).norm() <= 1e-12 * H.norm());
+            // Along the slide the exact Hessian is 0; the majorizer is μλ/|u| there.
+            const Eigen::Vector3d along = (tangent * d).normalized();
+            CHECK(along.dot(H_exact * along) == Approx(0).margin(1e-9 * H.norm()));
+            CHECK(along.dot(H * along) == Approx(mu * lambda / slide));
+            for (int k = 0; k < 20; ++k) {
+                const Eigen::Vector3d s = 3 * scale * Eigen::Vector3d(u(rng), u(rng), u(rng));
+                const double model = e0 + g.dot(s) + 0.5 * s.dot(H * s);
+                CHECK(friction_energy(d + s, n, lambda, mu, eps) <= model + mu * lambda * eps / 3);
+            }
+        }
+    }
+    CHECK(majorized >= 15);
+    CHECK(exact >= 15);
+}
+
 TEST_CASE("stitch energy: finite differences with and without rest length", "[cloth][contact][seam]") {
     std::mt19937 rng(7);
     std::normal_distribution<double> u(0, 0.01);

@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include <limits>
+
 namespace drape::cloth {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
@@ -35,9 +37,14 @@ double plane_contact_energy(const Eigen::Vector3d& x, const Eigen::Vector3d& poi
 /// \param displacement_m d; \param normal n (unit); \param normal_force_n λ >= 0;
 /// \param friction μ >= 0; \param epsilon_m ε > 0 (slip below which friction is static-like).
 /// The Hessian returned is PSD (f₀ is convex along |u| and the transverse part is >= 0).
+/// \param majorize_above_m where the tangential slip |u| exceeds max(ε, this), the Hessian
+/// returned is the quadratic majorizer μλ/|u| (I − nnᵀ) instead of the exact μλ/|u| (I − nnᵀ −
+/// ûûᵀ), which is zero along the slip (infinity, the default: always exact). The energy and
+/// gradient do not change; Newton then takes bounded steps for a vertex sliding far.
 double friction_energy(const Eigen::Vector3d& displacement_m, const Eigen::Vector3d& normal,
                        double normal_force_n, double friction, double epsilon_m,
-                       Eigen::Vector3d* gradient = nullptr, Eigen::Matrix3d* hessian = nullptr);
+                       Eigen::Vector3d* gradient = nullptr, Eigen::Matrix3d* hessian = nullptr,
+                       double majorize_above_m = std::numeric_limits<double>::infinity());
 
 /// A seam stitch between two vertices: ½ k (|xa − xb| − L)², L >= 0 the current rest length
 /// (shrunk to 0 while a seam is being closed). \param gradient 6 (xa, xb); \param hessian

@@ -93,6 +93,14 @@ struct SimulatorOptions {
     double cloth_friction = 0.6;     ///< Coulomb μ between cloth layers (self-contact), >= 0
     /// Friction is static-like below a slip speed of this (m/s); ε = this × Δt.
     double friction_slip_speed_m_per_s = 1e-3;
+    /// Body friction of a vertex that slides more than this in one step (m) gets the quadratic
+    /// majorizer μλ/|u| (I − nnᵀ) as its Hessian instead of the exact one, which is zero along
+    /// the slip (friction_energy's majorize_above_m). On a moving body (a walk) the exact
+    /// Hessian lets Newton ask for decimetre moves of the sliding vertices, the obstacle step
+    /// bound then cuts every vertex's step and Newton stops short: garments sink down the
+    /// body. Below the threshold the exact Hessian keeps a held garment snapped to sticking.
+    /// >= 0; infinity: always exact (the behaviour before 2026-11-29).
+    double friction_majorize_slip_m = 0.5e-3;
     bool self_contact = true;        ///< cloth–cloth repulsion (vertex–face and edge–edge)
 
     // ---- seams ----
