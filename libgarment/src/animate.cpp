@@ -82,6 +82,8 @@ bool AnimateOptions::is_valid(std::string* why) const {
         return fail("AnimateOptions::waistband_stretching_factor must be >= 1");
     if (!(std::isfinite(penetration_tolerance_m) && penetration_tolerance_m > 0))
         return fail("AnimateOptions::penetration_tolerance_m must be > 0");
+    if (!(std::isfinite(slip_tolerance_m) && slip_tolerance_m > 0))
+        return fail("AnimateOptions::slip_tolerance_m must be > 0");
     std::string w;
     if (!simulator.is_valid(&w)) return fail("AnimateOptions::simulator: " + w);
     return true;
@@ -172,6 +174,7 @@ AnimateSummary animate_outfit(const body::BodyModel& model, const body::ShapedBo
     AnimateSummary summary;
     summary.vertices = int(sim.positions().rows());
     summary.penetration_tolerance_m = options.penetration_tolerance_m;
+    summary.slip_tolerance_m = options.slip_tolerance_m;
     // Each garment's top (its vertices within kTopBandM of its highest point: a waistband,
     // the shoulders), each vertex with the body vertex nearest to it as draped: the slip is
     // how far the top sank relative to those body points (AnimationFrameCheck::max_slip_m),

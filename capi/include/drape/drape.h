@@ -662,7 +662,8 @@ typedef struct drape_animation_s* drape_animation;
  *  it with optional wind, every frame is checked. model NULL = the built-in model. options
  *  and monitor may be NULL; the monitor is called after every drape step (stage "draping")
  *  and every frame ("blending", "animating"; step = frames done, fraction = of the phase).
- *  \return DRAPE_OK (every frame made, no frame deeper than 2 mm in the body, no crossing);
+ *  \return DRAPE_OK (every frame made, no frame deeper than 2 mm in the body, no crossing, no
+ *          garment sunk 5 cm down the body);
  *          DRAPE_ERROR_NO_CONVERGENCE with an animation when it stopped early or is not
  *          usable (the frames made are kept; see its JSON), without one when the outfit could
  *          not be draped; DRAPE_ERROR_INVALID_ARGUMENT (bad folders, options, a BVH that does

@@ -59,6 +59,11 @@ struct AnimateOptions {
     double waistband_width_cm = 3.0;
     double waistband_stretching_factor = 4;
     double penetration_tolerance_m = 2e-3;  ///< `usable()` allows this much in every frame, > 0
+    /// `usable()` allows a garment to sink this far down the body (AnimationFrameCheck::
+    /// max_slip_m), > 0. 5 cm: more than a waistband's width (3 cm here), so a waistband that
+    /// slipped this far no longer sits where it was draped: the garment is falling off. Worn
+    /// garments settle 1–3 cm in the 5 s walks (docs/animation.md).
+    double slip_tolerance_m = 0.05;
     /// Called after every frame; return false to cancel. May be empty.
     std::function<bool(const AnimateProgress&)> on_progress;
 
@@ -113,12 +118,13 @@ struct AnimateSummary {
     double seconds_per_frame = 0;       ///< mean over the output frames (simulation + checks)
     double cpu_seconds_per_frame = 0;   ///< mean processor time (all threads) per output frame
     double penetration_tolerance_m = 2e-3;  ///< copied from the options, for usable()
+    double slip_tolerance_m = 0.05;         ///< copied from the options, for usable()
 
-    /// Completed, no frame deeper in the body than the tolerance, no crossing in any frame.
-    /// (The slip is reported, not judged: docs/animation.md, "Garments sinking".)
+    /// Completed, no frame deeper in the body than the tolerance, no crossing in any frame,
+    /// and no garment sunk further down the body than the slip tolerance (fallen off).
     bool usable() const {
         return termination == AnimateTermination::completed && max_penetration_m <= penetration_tolerance_m &&
-               max_self_intersections == 0;
+               max_self_intersections == 0 && max_slip_m <= slip_tolerance_m;
     }
     std::string brief_report() const;
 };
