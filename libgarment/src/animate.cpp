@@ -55,6 +55,10 @@ cloth::SimulatorOptions AnimateOptions::default_simulator_options() {
     // and the cloth rested 2-3 mm inside the moving shoulders (docs/animation.md).
     o.max_newton_iterations = 8;
     o.air_drag_n_s_per_m3 = 0.5;
+    // Friction Hessian majorized for slides over 0.5 mm in a step: with the exact one, Newton
+    // stopped short on the walking body every step and pants fell down (docs/cloth.md,
+    // "Friction on a moving body"). Draping keeps the exact Hessian (not measured there).
+    o.friction_majorize_slip_m = 0.5e-3;
     return o;
 }
 

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -99,8 +100,9 @@ struct SimulatorOptions {
     /// Hessian lets Newton ask for decimetre moves of the sliding vertices, the obstacle step
     /// bound then cuts every vertex's step and Newton stops short: garments sink down the
     /// body. Below the threshold the exact Hessian keeps a held garment snapped to sticking.
-    /// >= 0; infinity: always exact (the behaviour before 2026-11-29).
-    double friction_majorize_slip_m = 0.5e-3;
+    /// >= 0; infinity (the default): always exact. Garment animation uses 0.5 mm
+    /// (AnimateOptions::default_simulator_options).
+    double friction_majorize_slip_m = std::numeric_limits<double>::infinity();
     bool self_contact = true;        ///< cloth–cloth repulsion (vertex–face and edge–edge)
 
     // ---- seams ----

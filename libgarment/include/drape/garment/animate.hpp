@@ -49,8 +49,10 @@ struct AnimateOptions {
     int min_substeps = 2;
     int max_substeps = 8;
     /// The simulator: DrapeOptions::default_simulator_options() with gravity along −Y, 8
-    /// Newton iterations per step and light air drag (0.5 N·s/m³: a skirt walking at 1 m/s
-    /// is not blown back as by the draping's 2). Its time step is set from fps and substeps.
+    /// Newton iterations per step, light air drag (0.5 N·s/m³: a skirt walking at 1 m/s is
+    /// not blown back as by the draping's 2) and the friction Hessian majorized for slides
+    /// over 0.5 mm per step (friction_majorize_slip_m). Its time step is set from fps and
+    /// substeps.
     cloth::SimulatorOptions simulator = default_simulator_options();
     Eigen::Vector3d wind_m_per_s = Eigen::Vector3d::Zero();  ///< world frame, m/s
     /// A vertex faster than this (m/s) means the simulation exploded: the run stops.
