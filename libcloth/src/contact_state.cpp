@@ -42,6 +42,7 @@ void Simulator::Impl::update_obstacle_contacts(const Eigen::MatrixX3d& p) {
             q = obstacle->closest(p.row(i).transpose(), kLostContactRadius);
         if (!q.found) return;
         c.face = q.face;
+        c.weights = q.weights;
         c.point = q.point;
         c.normal = q.normal;
         c.distance = q.signed_distance_m;
@@ -78,16 +79,8 @@ void Simulator::Impl::lag_friction() {
         if (moved && c.face >= 0) {
             // The closest point's barycentric weights on its triangle carry the corners' motion.
             const Eigen::Vector3i t = obstacle->faces().row(c.face).transpose();
-            const Eigen::Vector3d a = now.row(t(0)).transpose(), e1 = now.row(t(1)).transpose() - a,
-                                  e2 = now.row(t(2)).transpose() - a, r = c.point - a;
-            const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), det = d11 * d22 - d12 * d12;
-            if (det > 0) {
-                const double wb = (d22 * e1.dot(r) - d12 * e2.dot(r)) / det;
-                const double wc = (d11 * e2.dot(r) - d12 * e1.dot(r)) / det;
-                const Eigen::Vector3d w(1 - wb - wc, wb, wc);
-                for (int k = 0; k < 3; ++k)
-                    f.surface_motion += w(k) * (now.row(t(k)) - obstacle_start.row(t(k))).transpose();
-            }
+            for (int k = 0; k < 3; ++k)
+                f.surface_motion += c.weights(k) * (now.row(t(k)) - obstacle_start.row(t(k))).transpose();
         }
         friction.push_back(f);
     }

@@ -120,15 +120,17 @@ ObstacleQuery Obstacle::closest(const Eigen::Vector3d& p, double max_distance_m)
     int best_feature = -1;
     m.bvh.nearest(p, best, [&](int t, double& best_d2) {
         core::TriangleFeature feature = core::TriangleFeature::vertex_a;
+        Eigen::Vector3d weights;
         const Eigen::Vector3d c = core::closest_point_on_triangle(
             p, m.x.row(m.f(t, 0)).transpose(), m.x.row(m.f(t, 1)).transpose(),
-            m.x.row(m.f(t, 2)).transpose(), &feature);
+            m.x.row(m.f(t, 2)).transpose(), &feature, &weights);
         const double d2 = (p - c).squaredNorm();
         if (d2 < best_d2) {
             best_d2 = d2;
             q.found = true;
             q.face = t;
             q.point = c;
+            q.weights = weights;
             best_feature = static_cast<int>(feature);
         }
     });

@@ -58,7 +58,8 @@ struct DisjointSets {
 // A body-contact record of one free vertex for the current Newton iteration.
 struct VertexContact {
     int vertex = -1;
-    int face = -1;  // the obstacle's closest triangle
+    int face = -1;                                      // the obstacle's closest triangle
+    Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // `point`'s barycentric weights on it
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
     double distance = std::numeric_limits<double>::infinity();  // signed, at query time

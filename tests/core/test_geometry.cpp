@@ -55,7 +55,12 @@ TEST_CASE("closest point on a triangle matches dense sampling", "[core][closest_
         const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
         const Eigen::Vector3d p = 2 * Eigen::Vector3d(u(rng), u(rng), u(rng));
         drape::core::TriangleFeature feature{};
-        const Eigen::Vector3d q = drape::core::closest_point_on_triangle(p, a, b, c, &feature);
+        Eigen::Vector3d w;
+        const Eigen::Vector3d q = drape::core::closest_point_on_triangle(p, a, b, c, &feature, &w);
+        // The weights give the point back, each >= 0, summing to 1.
+        CHECK((w(0) * a + w(1) * b + w(2) * c - q).norm() <= 1e-12);
+        CHECK(w.minCoeff() >= -1e-12);
+        CHECK(w.sum() == Approx(1).epsilon(1e-12));
         double best = std::numeric_limits<double>::infinity();
         const int n = 200;
         for (int i = 0; i <= n; ++i)
@@ -70,6 +75,9 @@ TEST_CASE("closest point on a triangle matches dense sampling", "[core][closest_
             case drape::core::TriangleFeature::vertex_a: CHECK(q == a); break;
             case drape::core::TriangleFeature::vertex_b: CHECK(q == b); break;
             case drape::core::TriangleFeature::vertex_c: CHECK(q == c); break;
+            case drape::core::TriangleFeature::edge_ab: CHECK(w(2) == 0); break;
+            case drape::core::TriangleFeature::edge_bc: CHECK(w(0) == Approx(0).margin(1e-15)); break;
+            case drape::core::TriangleFeature::edge_ca: CHECK(w(1) == 0); break;
             default: break;
         }
     }

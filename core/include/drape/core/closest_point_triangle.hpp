@@ -23,12 +23,15 @@ enum class TriangleFeature {
 ///
 /// \param p the query point; \param a, b, c the triangle's corners.
 /// \param feature if not null, receives the feature the closest point lies on.
+/// \param weights if not null, receives the closest point's barycentric weights (wa, wb, wc):
+///        each >= 0, summing to 1, point = wa a + wb b + wc c.
 /// \return the closest point, in the frame of the inputs.
 /// \pre the triangle is not degenerate (zero area); a degenerate triangle returns a point of
 ///      it whenever a vertex or edge region applies, but the interior formula divides by 0.
 /// \throw nothing.
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                                          TriangleFeature* feature = nullptr);
+                                          TriangleFeature* feature = nullptr,
+                                          Eigen::Vector3d* weights = nullptr);
 
 }  // namespace drape::core

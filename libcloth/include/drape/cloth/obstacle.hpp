@@ -14,6 +14,8 @@ struct ObstacleQuery {
     bool found = false;              ///< false when nothing lies within the search radius
     int face = -1;                   ///< closest triangle
     Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< closest point on the surface, world
+    /// The closest point's barycentric weights on `face` (its corners in order; >= 0, sum 1).
+    Eigen::Vector3d weights = Eigen::Vector3d::Zero();
     /// Outward unit normal at the closest feature (angle-weighted pseudo-normal on edges and
     /// vertices, so that the sign of (x − point)·normal is the inside/outside test of a
     /// closed, consistently oriented mesh).
