@@ -11,9 +11,13 @@ namespace drape::cloth {
 
 namespace {
 
-// A vertex's second contact plane of a step is made only for a surface facing the first
-// one: normals more than 90 degrees apart (a pinch), not a neighbouring patch of one surface.
+// A vertex's second contact plane of a step is made for a surface facing the first one:
+// normals more than 90 degrees apart (a pinch), not a neighbouring patch of one surface.
 constexpr double kFacingPlanesCos = 0.0;
+// A vertex also gets a second plane when its first one overstates its distance to the body
+// by more than this fraction of the layer: it has slid, within the step, round a sharply
+// curved part of the body (the armpit's fold), where the first plane passes through the body.
+constexpr double kPlaneMisfit = 0.5;
 // How far a vertex that was near the obstacle at the previous contact update is searched
 // for when it is no longer within the query radius (update_obstacle_contacts): deeper than
 // the half-thickness of most body parts, so a vertex pushed that far in is still found.
@@ -57,9 +61,12 @@ void Simulator::Impl::update_obstacle_contacts(const Eigen::MatrixX3d& p) {
         for (const VertexContact& c : contacts) {
             if (c.vertex < 0 || c.stiffness <= 0 || c.distance >= h) continue;
             std::array<int, 2>& own = plane_of_vertex[static_cast<std::size_t>(c.vertex)];
-            const bool add = own[0] < 0 ||
-                             (own[1] < 0 && planes[static_cast<std::size_t>(own[0])].second.dot(c.normal) <
-                                                kFacingPlanesCos);
+            bool add = own[0] < 0;
+            if (!add && own[1] < 0) {
+                const auto& [point, normal] = planes[static_cast<std::size_t>(own[0])];
+                add = normal.dot(c.normal) < kFacingPlanesCos ||
+                      normal.dot(p.row(c.vertex).transpose() - point) - c.distance > kPlaneMisfit * h;
+            }
             if (!add) continue;
             own[own[0] < 0 ? 0 : 1] = static_cast<int>(planes.size());
             planes.emplace_back(c.point, c.normal);
@@ -97,7 +104,17 @@ void Simulator::Impl::drop_released_friction() {
     friction.resize(w);
 }
 
-double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& dx) const {
+bool Simulator::Impl::plane_active(const Eigen::MatrixX3d& p, int i) const {
+    if (static_cast<std::size_t>(i) >= plane_of_vertex.size()) return false;
+    for (const int plane : plane_of_vertex[static_cast<std::size_t>(i)]) {
+        if (plane < 0) continue;
+        const auto& [point, normal] = planes[static_cast<std::size_t>(plane)];
+        if (normal.dot(p.row(i).transpose() - point) < options.contact_thickness_m) return true;
+    }
+    return false;
+}
+
+double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx) const {
     if (contacts.empty()) return 1.0;
     const double allowed_depth_m = options.contact_thickness_m;
     double alpha = 1.0;
@@ -107,9 +124,25 @@ double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& dx) const {
         if (move <= 0) continue;
         const double free_distance = std::isfinite(c.distance) ? c.distance : query_radius;
         if (free_distance <= 0) continue;
-        alpha = std::min(alpha, (0.9 * free_distance + allowed_depth_m) / move);
+        const double depth = plane_active(p, c.vertex) ? allowed_depth_m : 0.0;
+        alpha = std::min(alpha, (0.9 * free_distance + depth) / move);
     }
     return alpha;
+}
+
+bool Simulator::Impl::clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const {
+    bool changed = false;
+    for (const VertexContact& c : contacts) {
+        if (c.vertex < 0 || pinned[static_cast<std::size_t>(c.vertex)]) continue;
+        // Vertices with nothing within the query radius are left to obstacle_step_bound: cut
+        // one by one, a cloth in free flight would be sheared.
+        const double move = dx.row(c.vertex).norm();
+        if (!std::isfinite(c.distance) || c.distance <= 0 || move <= 0.9 * c.distance || plane_active(p, c.vertex))
+            continue;
+        dx.row(c.vertex) *= 0.9 * c.distance / move;
+        changed = true;
+    }
+    return changed;
 }
 
 void Simulator::Impl::lag_pair_friction(const Eigen::MatrixX3d& p) {

@@ -132,7 +132,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             for (const FrictionContact& f : friction)
                 if (!pinned[static_cast<std::size_t>(f.vertex)]) carry.row(f.vertex) = f.surface_motion.transpose();
             if (carry.squaredNorm() > 0) {
-                double alpha = std::min(1.0, obstacle_step_bound(carry));
+                double alpha = std::min(1.0, obstacle_step_bound(p, carry));
                 if (use_self) alpha = std::min(alpha, self_contact.max_safe_step(p, carry * alpha, 0.9) * alpha);
                 if (alpha > 0) p += alpha * carry;
             }
@@ -313,9 +313,31 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                 if (d >= 0) dx(i, c) = step(d);
             }
         tc = Clock::now();
-        const double obstacle_alpha = obstacle_step_bound(dx);
-        double alpha = obstacle_alpha;
+        // The energy's directional derivative along a per-vertex step (rhs is minus the gradient).
+        const auto slope_along = [&](const Eigen::MatrixX3d& v) {
+            double sl = 0;
+            for (Eigen::Index i = 0; i < p.rows(); ++i)
+                for (int c = 0; c < 3; ++c) {
+                    const int d = dof(static_cast<int>(i), c);
+                    if (d >= 0) sl -= v(i, c) * rhs(d);
+                }
+            return sl;
+        };
         double slope = -step.dot(rhs);
+        {
+            // Vertices falling onto the body stop short of it on their own; the clamped
+            // direction is taken only while it still descends.
+            Eigen::MatrixX3d clamped = dx;
+            if (clamp_free_approach(p, clamped)) {
+                const double clamped_slope = slope_along(clamped);
+                if (clamped_slope < 0) {
+                    dx.swap(clamped);
+                    slope = clamped_slope;
+                }
+            }
+        }
+        const double obstacle_alpha = obstacle_step_bound(p, dx);
+        double alpha = obstacle_alpha;
         bool released = false;
         Eigen::MatrixX3d released_dx;
         if (use_self) {
@@ -348,13 +370,8 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
                     trial_dx = dx;
                     self_contact.remove_closing_motion(p, trial_dx, holding, movable);
                     if (!together.empty()) self_contact.move_pairs_together(trial_dx, together, movable);
-                    double trial_slope = 0;
-                    for (Eigen::Index i = 0; i < p.rows(); ++i)
-                        for (int c = 0; c < 3; ++c) {
-                            const int d = dof(static_cast<int>(i), c);
-                            if (d >= 0) trial_slope -= trial_dx(i, c) * rhs(d);
-                        }
-                    trial_alpha = obstacle_step_bound(trial_dx);
+                    const double trial_slope = slope_along(trial_dx);
+                    trial_alpha = obstacle_step_bound(p, trial_dx);
                     trial_alpha = std::min(trial_alpha,
                                            self_contact.max_safe_step(p, trial_dx * trial_alpha, 0.9) * trial_alpha);
                     if (trial_slope < 0 && trial_alpha > alpha) {

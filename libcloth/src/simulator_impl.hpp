@@ -246,12 +246,22 @@ struct Simulator::Impl {
     // Drops the lagged friction of vertices no longer within the contact thickness.
     void drop_released_friction();
 
-    // Largest step fraction for which no free vertex can pass through the obstacle: a point
-    // at distance d from the surface cannot cross it by moving less than d, and a vertex that
-    // ends up to `allowed_depth_m` inside is still on the near side of any part of the body
-    // thicker than twice that, so the penalty (with its signed distance) pushes it back out.
+    // True when vertex i at p lies within the layer of one of its contact planes: its contact
+    // energy is active, and the step's Hessian knows of the body there.
+    bool plane_active(const Eigen::MatrixX3d& p, int i) const;
+    // Largest step fraction for which no free vertex at p can pass through the obstacle: a
+    // point at distance d from the surface cannot cross it by moving less than d. A vertex
+    // whose contact plane is active may end up to the layer's thickness inside: it is still on
+    // the near side of any part of the body thicker than twice that, and its plane's energy,
+    // which the line search sees, pushes it back out. Any other vertex has no energy there
+    // (and the iteration may be the last of its time step), so it stays outside (0.9 d).
     // Vertices already inside are not limited.
-    double obstacle_step_bound(const Eigen::MatrixX3d& dx) const;
+    double obstacle_step_bound(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx) const;
+    // Shortens the step of each vertex at p without an active contact plane to 0.9 of its
+    // distance to the obstacle (its row of dx scaled down, the others kept), so that a vertex
+    // falling onto the body does not shorten every vertex's step through obstacle_step_bound;
+    // true if any row changed.
+    bool clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const;
 
     // The lagged cloth–cloth friction of a time step: self-contact pairs within the thickness
     // at its start, with their frames and penalty forces λ = k (h − d).

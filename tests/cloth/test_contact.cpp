@@ -753,3 +753,85 @@ TEST_CASE("a patch pinched between two facing surfaces comes to rest between the
     CHECK(sim.positions().col(2).minCoeff() > 0.4 * gap);
     CHECK(sim.positions().col(2).maxCoeff() < 0.6 * gap);
 }
+
+TEST_CASE("a vertex falling onto the body stops outside it, without holding back the rest of the cloth",
+          "[cloth][contact][simulator]") {
+    // Two patches fall at 1.5 m/s; a floor lies under the first only, 8 mm below it, beyond
+    // the 5 mm contact layer. The step moves 12.5 mm, and Newton gets one iteration (a time
+    // step that ends early). A vertex without an active contact plane has no energy that
+    // would push it back out, so it may go only 0.9 of its distance towards the body: the
+    // first patch ends outside the floor. The cut is its own: the second patch, with nothing
+    // under it, still takes its full free-flight step. With one step length for the whole
+    // cloth, the first patch ended 4.2 mm inside the floor.
+    SimulatorOptions options;
+    options.gravity_m_per_s2.setZero();
+    options.time_step_s = 1.0 / 120;
+    options.max_newton_iterations = 1;
+    const double height = 0.008, speed = 1.5;
+    const ClothMesh a = make_square_grid(3, 0.04, Eigen::Vector3d(-0.12, -0.02, height), Eigen::Vector3d::UnitX(),
+                                         Eigen::Vector3d::UnitY());
+    const ClothMesh b = make_square_grid(3, 0.04, Eigen::Vector3d(0.12, -0.02, height), Eigen::Vector3d::UnitX(),
+                                         Eigen::Vector3d::UnitY());
+    Simulator sim(drape::cloth::test::two_pieces(a, b), drape::test::gray_interlock_material(), options);
+    Eigen::MatrixX3d floor(4, 3);
+    floor << -0.2, -0.1, 0, 0, -0.1, 0, 0, 0.1, 0, -0.2, 0.1, 0;
+    Eigen::MatrixX3i faces(2, 3);
+    faces << 0, 1, 2, 0, 2, 3;
+    sim.set_obstacle(Obstacle(floor, faces));
+    sim.set_velocities(Eigen::MatrixX3d::Zero(sim.positions().rows(), 3).rowwise() +
+                       Eigen::RowVector3d(0, 0, -speed));
+    const Eigen::MatrixX3d before = sim.positions();
+    sim.step();
+    const Eigen::MatrixX3d& x = sim.positions();
+    const int na = a.vertex_count();
+    const double a_low = x.topRows(na).col(2).minCoeff();
+    const Eigen::VectorXd b_fall = before.bottomRows(x.rows() - na).col(2) - x.bottomRows(x.rows() - na).col(2);
+    INFO("first patch's lowest vertex at " << 1e3 * a_low << " mm; second patch fell " << 1e3 * b_fall.minCoeff()
+                                           << "-" << 1e3 * b_fall.maxCoeff() << " mm of "
+                                           << 1e3 * speed * options.time_step_s);
+    CHECK(a_low > 0.05 * height);
+    CHECK(a_low < 0.5 * height);  // it did move most of the way
+    CHECK(b_fall.minCoeff() > 0.999 * speed * options.time_step_s);
+    CHECK(b_fall.maxCoeff() < 1.001 * speed * options.time_step_s);
+}
+
+TEST_CASE("a vertex sliding into a concave corner within a step is held by the second surface",
+          "[cloth][contact][simulator]") {
+    // A floor (z = 0, facing up) meets a wall (x = 0, facing -x) at a right angle: a concave
+    // corner, like the armpit's fold between chest and arm. A patch pressed into the floor's
+    // layer (a soft contact: it rests 1.2 mm deep in it) glides towards the wall 1 cm away at
+    // 1 m/s, frictionless. Its vertices' contact planes are the floor's, made at the step's
+    // start; the wall's normal is 90 degrees from the floor's, not facing it, so no pinch
+    // plane is made, and the floor's plane let the patch through the wall (10.8 mm deep; the
+    // walking t-shirt's armpit went 5.5 mm into the chest this way). A vertex whose plane
+    // overstates its distance to the body by more than half the layer now gets a second
+    // plane, where it is (1.0 mm deep at most).
+    SimulatorOptions options;
+    options.time_step_s = 1.0 / 60;
+    options.obstacle_friction = 0;
+    options.contact_stiffness_n_per_m3 = 2e3;
+    const double speed = 1.0;
+    const ClothMesh m = make_square_grid(3, 0.04, Eigen::Vector3d(-0.05, -0.02, 0.003), Eigen::Vector3d::UnitX(),
+                                         Eigen::Vector3d::UnitY());
+    Simulator sim(m, drape::test::gray_interlock_material(), options);
+    Eigen::MatrixX3d V(8, 3);
+    V << -0.3, -0.3, 0, 0, -0.3, 0, 0, 0.3, 0, -0.3, 0.3, 0,  // floor
+        0, -0.3, 0, 0, 0.3, 0, 0, 0.3, 0.3, 0, -0.3, 0.3;      // wall
+    Eigen::MatrixX3i F(4, 3);
+    F << 0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6;  // floor faces +z, wall faces -x
+    const Obstacle corner(V, F);
+    REQUIRE(corner.closest(Eigen::Vector3d(-0.01, 0, 0.1), 1).signed_distance_m > 0);
+    REQUIRE(corner.closest(Eigen::Vector3d(-0.1, 0, 0.01), 1).signed_distance_m > 0);
+    sim.set_obstacle(corner);
+    sim.set_velocities(Eigen::MatrixX3d::Zero(m.positions.rows(), 3).rowwise() + Eigen::RowVector3d(speed, 0, 0));
+    double deepest = 0, closest_to_wall = -1;
+    for (int k = 0; k < 8; ++k) {
+        REQUIRE(sim.step().usable());
+        closest_to_wall = std::max(closest_to_wall, sim.positions().col(0).maxCoeff());
+        for (Eigen::Index i = 0; i < sim.positions().rows(); ++i)
+            deepest = std::max(deepest, -corner.closest(sim.positions().row(i).transpose(), 0.05).signed_distance_m);
+    }
+    INFO("deepest " << 1e3 * deepest << " mm; the patch came to x = " << 1e3 * closest_to_wall << " mm");
+    CHECK(closest_to_wall > -0.002);  // it did reach the wall
+    CHECK(deepest < 2e-3);
+}
