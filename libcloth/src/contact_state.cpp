@@ -65,7 +65,8 @@ void Simulator::Impl::update_obstacle_contacts(const Eigen::MatrixX3d& p) {
             if (!add && own[1] < 0) {
                 const auto& [point, normal] = planes[static_cast<std::size_t>(own[0])];
                 add = normal.dot(c.normal) < kFacingPlanesCos ||
-                      normal.dot(p.row(c.vertex).transpose() - point) - c.distance > kPlaneMisfit * h;
+                      (options.strict_body_contact &&
+                       normal.dot(p.row(c.vertex).transpose() - point) - c.distance > kPlaneMisfit * h);
             }
             if (!add) continue;
             own[own[0] < 0 ? 0 : 1] = static_cast<int>(planes.size());
@@ -124,7 +125,7 @@ double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& p, const Eig
         if (move <= 0) continue;
         const double free_distance = std::isfinite(c.distance) ? c.distance : query_radius;
         if (free_distance <= 0) continue;
-        const double depth = plane_active(p, c.vertex) ? allowed_depth_m : 0.0;
+        const double depth = !options.strict_body_contact || plane_active(p, c.vertex) ? allowed_depth_m : 0.0;
         alpha = std::min(alpha, (0.9 * free_distance + depth) / move);
     }
     return alpha;
@@ -132,6 +133,7 @@ double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& p, const Eig
 
 bool Simulator::Impl::clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const {
     bool changed = false;
+    if (!options.strict_body_contact) return false;
     for (const VertexContact& c : contacts) {
         if (c.vertex < 0 || pinned[static_cast<std::size_t>(c.vertex)]) continue;
         // Vertices with nothing within the query radius are left to obstacle_step_bound: cut

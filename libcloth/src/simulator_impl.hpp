@@ -253,14 +253,15 @@ struct Simulator::Impl {
     // point at distance d from the surface cannot cross it by moving less than d. A vertex
     // whose contact plane is active may end up to the layer's thickness inside: it is still on
     // the near side of any part of the body thicker than twice that, and its plane's energy,
-    // which the line search sees, pushes it back out. Any other vertex has no energy there
-    // (and the iteration may be the last of its time step), so it stays outside (0.9 d).
-    // Vertices already inside are not limited.
+    // which the line search sees, pushes it back out. With strict_body_contact, any other
+    // vertex has no energy there (and the iteration may be the last of its time step), so it
+    // stays outside (0.9 d); without, every vertex gets the allowance. Vertices already inside
+    // are not limited.
     double obstacle_step_bound(const Eigen::MatrixX3d& p, const Eigen::MatrixX3d& dx) const;
     // Shortens the step of each vertex at p without an active contact plane to 0.9 of its
     // distance to the obstacle (its row of dx scaled down, the others kept), so that a vertex
     // falling onto the body does not shorten every vertex's step through obstacle_step_bound;
-    // true if any row changed.
+    // true if any row changed. Only with strict_body_contact.
     bool clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const;
 
     // The lagged cloth–cloth friction of a time step: self-contact pairs within the thickness

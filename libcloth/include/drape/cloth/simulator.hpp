@@ -103,6 +103,14 @@ struct SimulatorOptions {
     /// >= 0; infinity (the default): always exact. Garment animation uses 0.5 mm
     /// (AnimateOptions::default_simulator_options).
     double friction_majorize_slip_m = std::numeric_limits<double>::infinity();
+    /// Every Newton iterate keeps a vertex without an active contact plane outside the body
+    /// (its own step cut to 0.9 of its distance, the rest of the cloth's not), and a vertex
+    /// whose plane overstates its distance to the body by more than half the layer (it slid
+    /// round a concave fold, the armpit) gets a second plane. Off, a vertex may end a step that
+    /// stops on its iteration cap up to contact_thickness_m inside (docs/cloth.md, "Body
+    /// contact"). Off by default: the drape figures were measured without it; garment
+    /// animation turns it on (AnimateOptions::default_simulator_options).
+    bool strict_body_contact = false;
     bool self_contact = true;        ///< cloth–cloth repulsion (vertex–face and edge–edge)
 
     // ---- seams ----
