@@ -62,12 +62,10 @@ void Simulator::Impl::update_obstacle_contacts(const Eigen::MatrixX3d& p) {
             if (c.vertex < 0 || c.stiffness <= 0 || c.distance >= h) continue;
             std::array<int, 2>& own = plane_of_vertex[static_cast<std::size_t>(c.vertex)];
             bool add = own[0] < 0;
-            if (!add && own[1] < 0) {
-                const auto& [point, normal] = planes[static_cast<std::size_t>(own[0])];
-                add = normal.dot(c.normal) < kFacingPlanesCos ||
+            if (!add && own[1] < 0)
+                add = planes[static_cast<std::size_t>(own[0])].second.dot(c.normal) < kFacingPlanesCos ||
                       (options.strict_body_contact &&
-                       normal.dot(p.row(c.vertex).transpose() - point) - c.distance > kPlaneMisfit * h);
-            }
+                       plane_distance(own[0], p, c.vertex) - c.distance > kPlaneMisfit * h);
             if (!add) continue;
             own[own[0] < 0 ? 0 : 1] = static_cast<int>(planes.size());
             planes.emplace_back(c.point, c.normal);
@@ -105,13 +103,15 @@ void Simulator::Impl::drop_released_friction() {
     friction.resize(w);
 }
 
+double Simulator::Impl::plane_distance(int plane, const Eigen::MatrixX3d& p, int i) const {
+    const auto& [point, normal] = planes[static_cast<std::size_t>(plane)];
+    return normal.dot(p.row(i).transpose() - point);
+}
+
 bool Simulator::Impl::plane_active(const Eigen::MatrixX3d& p, int i) const {
     if (static_cast<std::size_t>(i) >= plane_of_vertex.size()) return false;
-    for (const int plane : plane_of_vertex[static_cast<std::size_t>(i)]) {
-        if (plane < 0) continue;
-        const auto& [point, normal] = planes[static_cast<std::size_t>(plane)];
-        if (normal.dot(p.row(i).transpose() - point) < options.contact_thickness_m) return true;
-    }
+    for (const int plane : plane_of_vertex[static_cast<std::size_t>(i)])
+        if (plane >= 0 && plane_distance(plane, p, i) < options.contact_thickness_m) return true;
     return false;
 }
 
@@ -133,7 +133,6 @@ double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& p, const Eig
 
 bool Simulator::Impl::clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const {
     bool changed = false;
-    if (!options.strict_body_contact) return false;
     for (const VertexContact& c : contacts) {
         if (c.vertex < 0 || pinned[static_cast<std::size_t>(c.vertex)]) continue;
         // Vertices with nothing within the query radius are left to obstacle_step_bound: cut

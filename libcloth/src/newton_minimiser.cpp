@@ -324,7 +324,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
             return sl;
         };
         double slope = -step.dot(rhs);
-        {
+        if (options.strict_body_contact) {
             // Vertices falling onto the body stop short of it on their own; the clamped
             // direction is taken only while it still descends.
             Eigen::MatrixX3d clamped = dx;

@@ -246,6 +246,8 @@ struct Simulator::Impl {
     // Drops the lagged friction of vertices no longer within the contact thickness.
     void drop_released_friction();
 
+    // Signed distance of vertex i at p from contact plane `plane` (an index into planes).
+    double plane_distance(int plane, const Eigen::MatrixX3d& p, int i) const;
     // True when vertex i at p lies within the layer of one of its contact planes: its contact
     // energy is active, and the step's Hessian knows of the body there.
     bool plane_active(const Eigen::MatrixX3d& p, int i) const;
@@ -261,7 +263,7 @@ struct Simulator::Impl {
     // Shortens the step of each vertex at p without an active contact plane to 0.9 of its
     // distance to the obstacle (its row of dx scaled down, the others kept), so that a vertex
     // falling onto the body does not shorten every vertex's step through obstacle_step_bound;
-    // true if any row changed. Only with strict_body_contact.
+    // true if any row changed. The line search calls it only with strict_body_contact.
     bool clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const;
 
     // The lagged cloth–cloth friction of a time step: self-contact pairs within the thickness
