@@ -131,6 +131,77 @@ double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& p, const Eig
     return alpha;
 }
 
+Eigen::MatrixX3d Simulator::Impl::start_carry(const Eigen::MatrixX3d& p) const {
+    Eigen::MatrixX3d carry = Eigen::MatrixX3d::Zero(p.rows(), 3);
+    if (friction.empty()) return carry;
+    for (const FrictionContact& f : friction)
+        if (!pinned[static_cast<std::size_t>(f.vertex)]) carry.row(f.vertex) = f.surface_motion.transpose();
+    if (carry.squaredNorm() == 0) return carry;
+    // The distances of the contacts are to the body where it is now, and a vertex carried with
+    // its surface keeps its distance to that surface: bounding the carry as a motion towards a
+    // body standing still cut it for every vertex on a surface that moves along itself, one cut
+    // for all the cloth (a walking outfit's cloth kept 45-90 % of it, and the shins ran into the
+    // trouser legs left behind). With strict_body_contact each vertex is carried in full unless
+    // that takes it deeper into the body than it is (into another part of the body), and a layer
+    // lying on carried cloth is carried with it (else the self-contact bound, which sees the
+    // layers slide over each other, cut the carry again).
+    double alpha = 1;
+    if (options.strict_body_contact) {
+        spread_carry_to_layers(carry);
+        keep_safe_carry(p, carry);
+    } else {
+        alpha = std::min(1.0, obstacle_step_bound(p, carry));
+    }
+    if (options.self_contact) alpha = std::min(alpha, self_contact.max_safe_step(p, carry * alpha, 0.9) * alpha);
+    return std::max(alpha, 0.0) * carry;
+}
+
+void Simulator::Impl::spread_carry_to_layers(Eigen::MatrixX3d& carry) const {
+    if (pair_friction.empty()) return;
+    const Eigen::MatrixX3d own = carry;
+    Eigen::MatrixX3d sum = Eigen::MatrixX3d::Zero(carry.rows(), 3);
+    Eigen::VectorXd weight = Eigen::VectorXd::Zero(carry.rows());
+    for (const PairFriction& f : pair_friction) {
+        // The two sides of a pair: the closest points' weights are positive on one, negative on
+        // the other, and sum to 1 and -1.
+        Eigen::Vector3d side[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+        bool carried[2] = {false, false};
+        for (int k = 0; k < 4; ++k) {
+            const double w = f.frame.weights(k);
+            if (w == 0) continue;
+            const int s = w > 0 ? 0 : 1;
+            const auto v = static_cast<Eigen::Index>(f.frame.pair.v[static_cast<std::size_t>(k)]);
+            side[s] += std::abs(w) * own.row(v).transpose();
+            carried[s] = carried[s] || own.row(v).squaredNorm() > 0;
+        }
+        for (int k = 0; k < 4; ++k) {
+            const double w = f.frame.weights(k);
+            const int s = w > 0 ? 0 : 1;
+            const int v = f.frame.pair.v[static_cast<std::size_t>(k)];
+            if (w == 0 || !carried[1 - s] || own.row(v).squaredNorm() > 0 || pinned[static_cast<std::size_t>(v)])
+                continue;
+            sum.row(v) += std::abs(w) * side[1 - s].transpose();
+            weight(v) += std::abs(w);
+        }
+    }
+    for (Eigen::Index v = 0; v < carry.rows(); ++v)
+        if (weight(v) > 0) carry.row(v) = sum.row(v) / weight(v);
+}
+
+void Simulator::Impl::keep_safe_carry(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& carry) const {
+    const double h = options.contact_thickness_m;
+    core::parallel_for(static_cast<int>(carry.rows()), [&](int i) {
+        if (carry.row(i).squaredNorm() == 0) return;
+        const double now = contacts[static_cast<std::size_t>(i)].distance;
+        const Eigen::Vector3d to = (p.row(i) + carry.row(i)).transpose();
+        const ObstacleQuery q = obstacle->closest(to, kLostContactRadius);
+        // Kept if the carried position is outside the body, or inside it no deeper than the
+        // vertex is now (a vertex the body moved into, carried back out of it).
+        if (!q.found || q.signed_distance_m >= 0 || q.signed_distance_m >= std::min(now, h) - 0.1 * h) return;
+        carry.row(i).setZero();
+    }, 64);
+}
+
 bool Simulator::Impl::clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const {
     bool changed = false;
     for (const VertexContact& c : contacts) {

@@ -127,16 +127,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         // is zero along the slip, and Newton overshot into the sticking regime and back for
         // every iteration of the step (a skirt on a body gliding at 1.2 m/s used all 8 of every
         // step and fell 11 cm behind).
-        if (it == 0 && inertia_weight > 0 && !friction.empty()) {
-            Eigen::MatrixX3d carry = Eigen::MatrixX3d::Zero(p.rows(), 3);
-            for (const FrictionContact& f : friction)
-                if (!pinned[static_cast<std::size_t>(f.vertex)]) carry.row(f.vertex) = f.surface_motion.transpose();
-            if (carry.squaredNorm() > 0) {
-                double alpha = std::min(1.0, obstacle_step_bound(p, carry));
-                if (use_self) alpha = std::min(alpha, self_contact.max_safe_step(p, carry * alpha, 0.9) * alpha);
-                if (alpha > 0) p += alpha * carry;
-            }
-        }
+        if (it == 0 && inertia_weight > 0) p += start_carry(p);
         const double contact_seconds = seconds_since(tc);
         s.seconds_contact += contact_seconds;
         if (small_full_step) {

@@ -35,6 +35,8 @@ PotentialProbe::PotentialProbe(Simulator& sim, double self_contact_radius_m) : s
     terms_.self_candidates = static_cast<int>(m.self_contact.candidates().size());
 }
 
+Eigen::MatrixX3d PotentialProbe::start_carry() const { return sim_.impl_->start_carry(sim_.impl_->x); }
+
 int PotentialProbe::dof(int vertex, int c) const { return sim_.impl_->dof(vertex, c); }
 int PotentialProbe::free_dofs() const { return sim_.impl_->free_dofs; }
 

@@ -41,6 +41,9 @@ public:
     double evaluate(const Eigen::MatrixX3d& q, Eigen::VectorXd* gradient = nullptr,
                     Eigen::MatrixXd* hessian = nullptr, int* active_self_pairs = nullptr);
 
+    /// The move of the first iterate of a step from the current state: each vertex the body
+    /// carries by friction, moved with its surface (Simulator::Impl::start_carry).
+    Eigen::MatrixX3d start_carry() const;
     /// Free-dof index of coordinate c of vertex i, or −1 if the vertex is pinned.
     int dof(int vertex, int c) const;
     int free_dofs() const;

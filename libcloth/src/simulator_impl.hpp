@@ -265,6 +265,16 @@ struct Simulator::Impl {
     // falling onto the body does not shorten every vertex's step through obstacle_step_bound;
     // true if any row changed. The line search calls it only with strict_body_contact.
     bool clamp_free_approach(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& dx) const;
+    // The first iterate's move of a dynamic step (newton_minimiser): each vertex with body
+    // friction moved with its surface's motion, as far as that is collision-safe.
+    Eigen::MatrixX3d start_carry(const Eigen::MatrixX3d& p) const;
+    // Strict body contact's carry of a layer lying on a carried one (start_carry): a vertex
+    // the body does not carry, in cloth contact with vertices it does, takes their carry (the
+    // mean over its contacts, weighted as the contact's closest points are).
+    void spread_carry_to_layers(Eigen::MatrixX3d& carry) const;
+    // Strict body contact's check of the carry (start_carry): drops the carry of each vertex
+    // that it would take deeper into the body than the vertex is now.
+    void keep_safe_carry(const Eigen::MatrixX3d& p, Eigen::MatrixX3d& carry) const;
 
     // The lagged cloth–cloth friction of a time step: self-contact pairs within the thickness
     // at its start, with their frames and penalty forces λ = k (h − d).

@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "gray_interlock_fixture.hpp"
+#include "../../libcloth/src/potential_probe.hpp"
 #include "two_pieces_fixture.hpp"
 #include <common/finite_differences.hpp>
 
@@ -844,4 +845,117 @@ TEST_CASE("a vertex sliding into a concave corner within a step is held by the s
     INFO("deepest " << 1e3 * deepest << " mm; the patch came to x = " << 1e3 * closest_to_wall << " mm");
     CHECK(closest_to_wall > -0.002);  // it did reach the wall
     CHECK(deepest < 2e-3);
+}
+
+TEST_CASE("with strict_body_contact a body moving along its surface carries its cloth and the layer on it in full",
+          "[cloth][contact][simulator]") {
+    // A plate slides along +X at 1.5 m/s, 12.5 mm per 1/120 s step; a patch rests on it under
+    // gravity, and a second patch rests on the first. Newton gets one iteration per step. The
+    // body's friction carries the cloth it holds: Newton starts with those vertices moved along
+    // with the surface. Bounded as a motion towards a body standing still, that carry was cut
+    // to (0.9 d + h) / 12.5 mm of itself, one cut for all the cloth, and the patch on top, which
+    // the body does not touch, was not carried at all. With strict_body_contact each vertex is
+    // carried with its surface in full, and the patch on top, held by cloth friction, with the
+    // patch under it.
+    const double speed = 1.5;
+    const auto plate = [](double x) {
+        Eigen::MatrixX3d v(4, 3);
+        v << -1 + x, -1, 0, 1 + x, -1, 0, 1 + x, 1, 0, -1 + x, 1, 0;
+        return v;
+    };
+    Eigen::MatrixX3i faces(2, 3);
+    faces << 0, 1, 2, 0, 2, 3;
+    for (const bool strict : {true, false}) {
+        SimulatorOptions options;
+        options.time_step_s = 1.0 / 120;
+        options.max_newton_iterations = 1;
+        options.obstacle_friction = 0.6;
+        options.cloth_friction = 0.6;
+        options.strict_body_contact = strict;
+        const double h = options.contact_thickness_m;
+        const ClothMesh lower = make_square_grid(4, 0.1, Eigen::Vector3d(-0.05, -0.05, 0.5 * h),
+                                                 Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+        const ClothMesh upper = make_square_grid(4, 0.1, Eigen::Vector3d(-0.05, -0.05, 1.3 * h),
+                                                 Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+        Simulator sim(drape::cloth::test::two_pieces(lower, upper), drape::test::gray_interlock_material(), options);
+        sim.set_obstacle(Obstacle(plate(0), faces));
+        for (int k = 0; k < 20; ++k) REQUIRE(sim.step().usable());  // settles on the plate
+        const Eigen::MatrixX3d start = sim.positions();
+        const int n = lower.vertex_count();
+        const double step_m = speed * options.time_step_s;
+        sim.move_obstacle(plate(step_m));
+        REQUIRE(sim.step().usable());
+        const Eigen::MatrixX3d moved = sim.positions() - start;
+        const double lower_x = moved.topRows(n).col(0).mean(), upper_x = moved.bottomRows(n).col(0).mean();
+        INFO("strict " << strict << ": lower patch carried " << 1e3 * lower_x << " mm, upper " << 1e3 * upper_x
+                       << " mm of " << 1e3 * step_m << "; heights after settling " << 1e3 * start.topRows(n).col(2).mean()
+                       << " and " << 1e3 * start.bottomRows(n).col(2).mean() << " mm");
+        if (strict) {
+            CHECK(lower_x > 0.95 * step_m);
+            CHECK(lower_x < 1.02 * step_m);
+            CHECK(upper_x > 0.9 * step_m);
+        } else {
+            CHECK(lower_x < 0.8 * step_m);
+            CHECK(upper_x < 0.2 * step_m);
+        }
+    }
+}
+
+TEST_CASE("with strict_body_contact the carry stops at another part of the body", "[cloth][contact][simulator]") {
+    // A plate (one part of the body, ending at x = 0.10) has moved 12.5 mm along +X since the
+    // last step, towards a closed box standing still at x = 0.12 (another part). A patch lies
+    // on the plate, 2.5 mm above it, its front row at x = 0.11. The step's first iterate moves
+    // every patch vertex with the plate, except the front row: carried, it would be 2.5 mm
+    // inside the box.
+    const double shift = 0.0125;
+    const auto body = [](double x) {
+        Eigen::MatrixX3d v(12, 3);
+        v << -1 + x, -1, 0, 0.10 + x, -1, 0, 0.10 + x, 1, 0, -1 + x, 1, 0,  // the plate, facing +z
+            0.12, -1, -0.05, 0.2, -1, -0.05, 0.2, 1, -0.05, 0.12, 1, -0.05,  // the box's corners
+            0.12, -1, 0.05, 0.2, -1, 0.05, 0.2, 1, 0.05, 0.12, 1, 0.05;
+        return v;
+    };
+    Eigen::MatrixX3i faces(14, 3);
+    faces << 0, 1, 2, 0, 2, 3,                 // plate
+        4, 6, 5, 4, 7, 6, 8, 9, 10, 8, 10, 11,  // box bottom (-z), top (+z)
+        4, 5, 9, 4, 9, 8, 6, 7, 11, 6, 11, 10,  // y = -1 (-y), y = 1 (+y)
+        4, 8, 11, 4, 11, 7, 5, 6, 10, 5, 10, 9; // x = 0.12 (-x), x = 0.2 (+x)
+    for (const bool strict : {true, false}) {
+        SimulatorOptions options;
+        options.time_step_s = 1.0 / 120;
+        options.obstacle_friction = 0.6;
+        options.strict_body_contact = strict;
+        options.self_contact = false;  // a flat patch: only the body bounds its carry
+        const double h = options.contact_thickness_m;
+        const ClothMesh patch = make_square_grid(4, 0.1, Eigen::Vector3d(0.01, -0.05, 0.5 * h),
+                                                 Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY());
+        Simulator sim(patch, drape::test::gray_interlock_material(), options);
+        sim.set_obstacle(Obstacle(body(0), faces));
+        {
+            const Obstacle o(body(shift), faces);
+            const ObstacleQuery q = o.closest(Eigen::Vector3d(0.11 + shift, 0, 0.5 * h), 0.1);
+            REQUIRE(q.found);
+            REQUIRE(q.signed_distance_m < 0);  // the front row, carried, would be in the box
+        }
+        sim.move_obstacle(body(shift));
+        const drape::cloth::internal::PotentialProbe probe(sim, 2 * h);
+        const Eigen::MatrixX3d carry = probe.start_carry();
+        const Eigen::MatrixX3d& x = sim.positions();
+        double front = 0, rest_min = 1, rest_max = 0;
+        for (Eigen::Index v = 0; v < x.rows(); ++v) {
+            const double c = carry.row(v).norm();
+            if (x(v, 0) > 0.109) front = std::max(front, c);
+            else rest_min = std::min(rest_min, c), rest_max = std::max(rest_max, c);
+        }
+        INFO("strict " << strict << ": front row carried up to " << 1e3 * front << " mm, the others "
+                       << 1e3 * rest_min << "-" << 1e3 * rest_max << " mm of " << 1e3 * shift);
+        if (strict) {
+            CHECK(front == 0);
+            CHECK(rest_min > 0.999 * shift);
+            CHECK(rest_max < 1.001 * shift);
+        } else {
+            // One cut for all: (0.9 d + h) / 12.5 mm with d = 2.5 mm.
+            CHECK(rest_max < 0.65 * shift);
+        }
+    }
 }
