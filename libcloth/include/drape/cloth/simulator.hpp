@@ -108,8 +108,12 @@ struct SimulatorOptions {
     /// whose plane overstates its distance to the body by more than half the layer (it slid
     /// round a concave fold, the armpit) gets a second plane. Off, a vertex may end a step that
     /// stops on its iteration cap up to contact_thickness_m inside (docs/cloth.md, "Body
-    /// contact"). Off by default: the drape figures were measured without it; garment
-    /// animation turns it on (AnimateOptions::default_simulator_options).
+    /// contact"). On, a step's first iterate also carries each vertex the moving body holds by
+    /// friction with its surface in full (not where that would take it into another part of
+    /// the body), and the cloth lying on carried cloth with it; off, one scale for the whole
+    /// cloth from the step bound (docs/cloth.md, "Friction on a moving body"). Off by default:
+    /// the drape figures were measured without it; garment animation turns it on
+    /// (AnimateOptions::default_simulator_options).
     bool strict_body_contact = false;
     bool self_contact = true;        ///< cloth–cloth repulsion (vertex–face and edge–edge)
 
