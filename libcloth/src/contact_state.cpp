@@ -133,7 +133,6 @@ double Simulator::Impl::obstacle_step_bound(const Eigen::MatrixX3d& p, const Eig
 
 Eigen::MatrixX3d Simulator::Impl::start_carry(const Eigen::MatrixX3d& p) const {
     Eigen::MatrixX3d carry = Eigen::MatrixX3d::Zero(p.rows(), 3);
-    if (friction.empty()) return carry;
     for (const FrictionContact& f : friction)
         if (!pinned[static_cast<std::size_t>(f.vertex)]) carry.row(f.vertex) = f.surface_motion.transpose();
     if (carry.squaredNorm() == 0) return carry;

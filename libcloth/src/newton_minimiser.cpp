@@ -127,7 +127,7 @@ StepSummary Simulator::Impl::minimise(Eigen::MatrixX3d& p, const Eigen::MatrixX3
         // is zero along the slip, and Newton overshot into the sticking regime and back for
         // every iteration of the step (a skirt on a body gliding at 1.2 m/s used all 8 of every
         // step and fell 11 cm behind).
-        if (it == 0 && inertia_weight > 0) p += start_carry(p);
+        if (it == 0 && inertia_weight > 0 && !friction.empty()) p += start_carry(p);
         const double contact_seconds = seconds_since(tc);
         s.seconds_contact += contact_seconds;
         if (small_full_step) {
