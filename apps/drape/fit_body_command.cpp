@@ -45,7 +45,6 @@ struct FitArgs {
 
 void run_fit_body(const FitArgs& args) {
     BodyFitFiles files = read_body_fit_files(args.image, args.joints, args.silhouette, args.skin, args.labels);
-    const cv::Mat& photo = files.photo;
     body::FitInputs& in = files.inputs;
     in.height_m = args.height_m;
     if (!args.gender.empty()) in.gender = body::parse_gender(args.gender);
@@ -84,14 +83,7 @@ void run_fit_body(const FitArgs& args) {
     if (!summary.usable()) throw std::runtime_error(summary.brief_report());
 
     const body::FitQuality quality = body::fit_quality(model, in, fit, summary);
-    const body::ShapedBody shaped = body::shape_from_coefficients(model, fit.coefficients);
-
-    const nlohmann::json j = body_fit_json(args.image, files, model, fit, summary, quality);
-
-    const fs::path dir(args.out);
-    write_json_file(dir / "body.json", j);
-    body::export_glb(dir / "body.glb", model, shaped, fit.pose);
-    write_png(dir / "overlay.png", draw_fit_overlay(photo, quality.silhouette, fit.joints_2d, in.joints_px));
+    write_body_fit_folder(args.out, args.image, files, model, fit, summary, quality);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 //              [--samples N] [--threads N] [--stage auto|none|floor|cove] --out render.png
 //              [--labels labels.png]
 #include <drape/io/body_json.hpp>
+#include <drape/io/render_camera.hpp>
 #include "commands.hpp"
 #include <drape/io/image_io.hpp>
 #include <drape/io/json_io.hpp>
@@ -66,48 +67,6 @@ struct BodyInput {
     int image_height = 0;
 };
 
-Eigen::Vector2d vec2(const nlohmann::json& j, const std::string& what, const std::string& file) {
-    if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
-        throw InvalidInput(file + ": " + what + " must be [x, y] numbers, got " + j.dump());
-    return {j[0].get<double>(), j[1].get<double>()};
-}
-
-Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& what, const std::string& file) {
-    if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-        throw InvalidInput(file + ": " + what + " must be [x, y, z] numbers, got " + j.dump());
-    return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
-
-double number(const nlohmann::json& j, const std::string& key, const std::string& file) {
-    const std::optional<double> v = optional_number(j, key, file);
-    if (!v) throw InvalidInput(file + ": field '" + key + "' is missing");
-    return *v;
-}
-
-/// The camera object `drape fit-body` writes into body.json.
-body::Camera body_camera_from_json(const nlohmann::json& j, const std::string& file) {
-    reject_unknown_keys(j, {"model", "scale_px_per_m", "focal_px", "distance_m", "offset_px", "pixel_frame"}, file);
-    body::Camera c;
-    const std::string model = j.contains("model") && j["model"].is_string() ? j["model"].get<std::string>() : "";
-    if (model == "pinhole") {
-        c.model = body::CameraModel::pinhole;
-        c.focal_px = number(j, "focal_px", file);
-        c.distance_m = number(j, "distance_m", file);
-    } else if (model == "weak_perspective") {
-        c.model = body::CameraModel::weak_perspective;
-        c.scale_px_per_m = number(j, "scale_px_per_m", file);
-        if (j.contains("distance_m")) c.distance_m = number(j, "distance_m", file);
-    } else {
-        throw InvalidInput(file + ": camera field 'model' must be \"pinhole\" or \"weak_perspective\", got " +
-                           (j.contains("model") ? j["model"].dump() : std::string("nothing")));
-    }
-    if (!j.contains("offset_px")) throw InvalidInput(file + ": camera field 'offset_px' is missing");
-    c.offset_px = vec2(j["offset_px"], "camera 'offset_px'", file);
-    std::string why;
-    if (!c.is_valid(&why)) throw InvalidInput(file + ": " + why);
-    return c;
-}
-
 BodyInput load_body(const RenderArgs& args) {
     const body::BodyModel loaded = args.model.empty() ? body::BodyModel() : body::load_model(args.model);
     const body::BodyModel& model = args.model.empty() ? body::BodyModel::default_model() : loaded;
@@ -129,7 +88,7 @@ BodyInput load_body(const RenderArgs& args) {
                                " values but the body model has " + std::to_string(model.shape_count()));
         shaped = body::shape_from_coefficients(model, coeff);
         if (j.contains("pose")) pose = pose_from_json(j["pose"], args.body);
-        if (j.contains("camera")) in.camera = body_camera_from_json(j["camera"], args.body);
+        if (j.contains("camera")) in.camera = camera_from_json(j["camera"], args.body);
         if (j.contains("image") && j["image"].is_object()) {
             in.image_width = static_cast<int>(j["image"].value("width", 0.0));
             in.image_height = static_cast<int>(j["image"].value("height", 0.0));
@@ -199,16 +158,7 @@ int label_from_name(const std::string& path) {
 }
 
 render::Camera camera_from_file(const std::string& file, int width, int height) {
-    const nlohmann::json j = read_json_file(file);
-    const nlohmann::json& c = j.contains("camera") && j["camera"].is_object() ? j["camera"] : j;
-    if (c.contains("eye")) {
-        reject_unknown_keys(c, {"eye", "target", "up", "focal_px"}, file);
-        if (!c.contains("target")) throw InvalidInput(file + ": look-at camera field 'target' is missing");
-        const Eigen::Vector3d up = c.contains("up") ? vec3(c["up"], "'up'", file) : Eigen::Vector3d(0, 1, 0);
-        return render::Camera::look_at(vec3(c["eye"], "'eye'", file), vec3(c["target"], "'target'", file), up,
-                                       number(c, "focal_px", file), width, height);
-    }
-    return render::Camera::from_body(body_camera_from_json(c, file), width, height);
+    return render_camera_from_json(read_json_file(file), file, width, height);
 }
 
 void run_render(const RenderArgs& args) {

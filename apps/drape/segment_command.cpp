@@ -83,24 +83,12 @@ void run_segment(const SegmentArgs& args) {
     gopt.wrinkles.person_height_m = args.height_m;
     const std::vector<vision::GarmentResult> garments =
         vision::describe_garments(photo, seg, joints, options.table, gopt, options.hint);
-    cv::Mat garment_mask = cv::Mat::zeros(photo.size(), CV_8UC1);
-    std::vector<vision::Fold> folds;
-    for (const auto& g : garments) {
-        garment_mask |= seg.labels == g.label_id;
-        folds.insert(folds.end(), g.folds.begin(), g.folds.end());
+    for (const auto& g : garments)
         std::cerr << "  " << vision::to_string(g.type) << " (class " << g.label_id << " "
                   << g.class_name << "): " << g.area_px << " px, occluded "
                   << g.occlusion_fraction << ", " << g.wrinkles.brief_report() << "\n";
-    }
     if (garments.empty()) std::cerr << "drape segment: no garment found\n";
-    const fs::path dir(args.out);
-    write_png(dir / "labels.png", seg.labels);
-    write_png(dir / "occlusion.png", seg.occlusion);
-    write_png(dir / "overlay.png", vision::draw_segmentation(photo, seg.labels));
-    write_png(dir / "folds.png", vision::draw_folds(photo, garment_mask, folds));
-    write_json_file(dir / "garments.json",
-                    garments_json(garments, summary, args.image, photo.cols, photo.rows, mode,
-                                  args.height_m));
+    write_segmentation_folder(args.out, photo, seg, summary, garments, args.image, mode, args.height_m);
 }
 
 }  // namespace

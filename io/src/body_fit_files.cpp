@@ -2,7 +2,11 @@
 
 #include <drape/io/body_json.hpp>
 #include <drape/io/image_io.hpp>
+#include <drape/io/json_io.hpp>
 
+#include "staging.hpp"
+
+#include <drape/body/model_io.hpp>
 #include <drape/core/errors.hpp>
 
 #include <vector>
@@ -89,6 +93,18 @@ nlohmann::json body_fit_json(const std::string& image, const BodyFitFiles& files
                 {"knee_bend_deg", quality.knee_bend_deg}};
     if (quality.skin_coverage >= 0) j["fit"]["skin_coverage"] = quality.skin_coverage;
     return j;
+}
+
+void write_body_fit_folder(const std::filesystem::path& out, const std::string& image, const BodyFitFiles& files,
+                           const body::BodyModel& model, const body::BodyFit& fit, const body::FitSummary& summary,
+                           const body::FitQuality& quality) {
+    const body::ShapedBody shaped = body::shape_from_coefficients(model, fit.coefficients);
+    detail::Staging staging(out);
+    write_json_file(staging / "body.json", body_fit_json(image, files, model, fit, summary, quality));
+    body::export_glb(staging / "body.glb", model, shaped, fit.pose);
+    write_png(staging / "overlay.png",
+              draw_fit_overlay(files.photo, quality.silhouette, fit.joints_2d, files.inputs.joints_px));
+    staging.commit();
 }
 
 }  // namespace drape::io

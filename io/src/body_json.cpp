@@ -5,6 +5,7 @@
 #include <drape/core/errors.hpp>
 
 #include <cmath>
+#include <optional>
 
 namespace drape::io {
 
@@ -124,6 +125,46 @@ nlohmann::json to_json(const body::Camera& c) {
     j["offset_px"] = {c.offset_px.x(), c.offset_px.y()};
     j["pixel_frame"] = "origin at the top-left corner of the image, pixel centres at +0.5";
     return j;
+}
+
+namespace {
+
+Eigen::Vector2d vec2(const nlohmann::json& j, const std::string& what, const std::string& file) {
+    if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
+        throw InvalidInput(file + ": " + what + " must be [x, y] numbers, got " + j.dump());
+    return {j[0].get<double>(), j[1].get<double>()};
+}
+
+double number(const nlohmann::json& j, const std::string& key, const std::string& file) {
+    const std::optional<double> v = optional_number(j, key, file);
+    if (!v) throw InvalidInput(file + ": field '" + key + "' is missing");
+    return *v;
+}
+
+}  // namespace
+
+body::Camera camera_from_json(const nlohmann::json& j, const std::string& file) {
+    if (!j.is_object()) throw InvalidInput(file + ": a camera must be a JSON object, got " + j.dump());
+    reject_unknown_keys(j, {"model", "scale_px_per_m", "focal_px", "distance_m", "offset_px", "pixel_frame"}, file);
+    body::Camera c;
+    const std::string model = j.contains("model") && j["model"].is_string() ? j["model"].get<std::string>() : "";
+    if (model == "pinhole") {
+        c.model = body::CameraModel::pinhole;
+        c.focal_px = number(j, "focal_px", file);
+        c.distance_m = number(j, "distance_m", file);
+    } else if (model == "weak_perspective") {
+        c.model = body::CameraModel::weak_perspective;
+        c.scale_px_per_m = number(j, "scale_px_per_m", file);
+        if (j.contains("distance_m")) c.distance_m = number(j, "distance_m", file);
+    } else {
+        throw InvalidInput(file + ": camera field 'model' must be \"pinhole\" or \"weak_perspective\", got " +
+                           (j.contains("model") ? j["model"].dump() : std::string("nothing")));
+    }
+    if (!j.contains("offset_px")) throw InvalidInput(file + ": camera field 'offset_px' is missing");
+    c.offset_px = vec2(j["offset_px"], "camera 'offset_px'", file);
+    std::string why;
+    if (!c.is_valid(&why)) throw InvalidInput(file + ": " + why);
+    return c;
 }
 
 }  // namespace drape::io

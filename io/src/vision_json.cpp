@@ -2,9 +2,13 @@
 
 #include <drape/io/joints_json.hpp>
 
+#include <drape/io/image_io.hpp>
 #include <drape/io/json_io.hpp>
 
+#include "staging.hpp"
+
 #include <drape/core/errors.hpp>
+#include <drape/vision/wrinkle_density.hpp>
 
 #include <cmath>
 
@@ -138,6 +142,26 @@ vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, con
     std::string why;
     if (!p.is_valid(&why)) throw InvalidInput(f + ": " + why);
     return p;
+}
+
+void write_segmentation_folder(const std::filesystem::path& out, const cv::Mat& photo,
+                               const vision::Segmentation& seg, const vision::SegmentationSummary& summary,
+                               const std::vector<vision::GarmentResult>& garments, const std::string& image_file,
+                               const std::string& mode, double person_height_m) {
+    cv::Mat garment_mask = cv::Mat::zeros(photo.size(), CV_8UC1);
+    std::vector<vision::Fold> folds;
+    for (const auto& g : garments) {
+        garment_mask |= seg.labels == g.label_id;
+        folds.insert(folds.end(), g.folds.begin(), g.folds.end());
+    }
+    detail::Staging staging(out);
+    write_png(staging / "labels.png", seg.labels);
+    write_png(staging / "occlusion.png", seg.occlusion);
+    write_png(staging / "overlay.png", vision::draw_segmentation(photo, seg.labels));
+    write_png(staging / "folds.png", vision::draw_folds(photo, garment_mask, folds));
+    write_json_file(staging / "garments.json",
+                    garments_json(garments, summary, image_file, photo.cols, photo.rows, mode, person_height_m));
+    staging.commit();
 }
 
 }  // namespace drape::io

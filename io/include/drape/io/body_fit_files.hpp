@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include <filesystem>
 #include <string>
 
 namespace drape::io {
@@ -37,5 +38,14 @@ const char* termination_name(body::Termination t);
 nlohmann::json body_fit_json(const std::string& image, const BodyFitFiles& files, const body::BodyModel& model,
                              const body::BodyFit& fit, const body::FitSummary& summary,
                              const body::FitQuality& quality);
+
+/// Writes the folder of `drape fit-body`: body.json (body_fit_json), body.glb (the fitted
+/// body, rigged, in the fitted pose) and overlay.png (draw_fit_overlay of the fitted body's
+/// silhouette and joints over the photo), staged inside `out` and moved in only once all are
+/// written, so a failure leaves `out` as it was. Shared by the CLI and the C API.
+/// \throw drape::IoError naming the file or folder.
+void write_body_fit_folder(const std::filesystem::path& out, const std::string& image, const BodyFitFiles& files,
+                           const body::BodyModel& model, const body::BodyFit& fit, const body::FitSummary& summary,
+                           const body::FitQuality& quality);
 
 }  // namespace drape::io

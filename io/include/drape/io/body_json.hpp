@@ -27,5 +27,10 @@ nlohmann::json to_json(const body::Pose& pose);
 /// The `drape fit-body` camera object (weak perspective or pinhole, principal point, pixel
 /// frame); saved alone it is a `drape render --camera FILE` camera.
 nlohmann::json to_json(const body::Camera& camera);
+/// The inverse of to_json(camera): {"model": "pinhole", "focal_px", "distance_m",
+/// "offset_px"} or {"model": "weak_perspective", "scale_px_per_m", ["distance_m"],
+/// "offset_px"} ("pixel_frame" is read as a comment).
+/// \throw drape::InvalidInput naming `file` and the field.
+body::Camera camera_from_json(const nlohmann::json& j, const std::string& file);
 
 }  // namespace drape::io

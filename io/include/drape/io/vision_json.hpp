@@ -43,6 +43,17 @@ nlohmann::json cues_json(const vision::GarmentShapeCues& cues);
 /// (unknown class, bad colour, colours too close).
 vision::StrokePalette read_stroke_palette(const std::filesystem::path& file, const vision::LabelTable& table);
 
+/// Writes the folder of `drape segment` (docs/vision.md, "CLI"): labels.png (class ids),
+/// occlusion.png, overlay.png (the labels over the photo), folds.png (each garment's folds)
+/// and garments.json (garments_json), staged in a folder inside `out` and moved in only once
+/// all are written, so a failure leaves `out` as it was. Shared by the CLI and the C API.
+/// \param photo the 8-bit BGR photo that was segmented
+/// \throw drape::IoError naming the file or folder.
+void write_segmentation_folder(const std::filesystem::path& out, const cv::Mat& photo,
+                               const vision::Segmentation& segmentation, const vision::SegmentationSummary& summary,
+                               const std::vector<vision::GarmentResult>& garments, const std::string& image_file,
+                               const std::string& mode, double person_height_m);
+
 /// Creates `dir` (and parents). \throw drape::IoError when it cannot.
 void make_output_dir(const std::filesystem::path& dir);
 
