@@ -257,18 +257,44 @@ drape_status drape_garment_mesh_get_pattern(drape_garment_mesh mesh, drape_patte
     });
 }
 
+}  // extern "C"
+
+namespace {
+
+// The mesh's faces with these vertices, as ".obj" (with uv and panel groups) or ".glb".
+void write_mesh_file(const char* path, const drape_garment_mesh_s& mesh, const Eigen::MatrixX3d& X,
+                     const char* comment) {
+    const std::filesystem::path p(path);
+    const std::string ext = p.extension().string();
+    if (ext == ".obj")
+        dg::write_garment_obj(p, mesh.pattern->pattern, *mesh.mesh, X, comment);
+    else if (ext == ".glb")
+        dg::write_garment_glb(p, *mesh.mesh, X);
+    else
+        throw drape::InvalidInput("path '" + p.string() + "' must end in .obj or .glb");
+}
+
+}  // namespace
+
+extern "C" {
+
 drape_status drape_garment_mesh_export(drape_garment_mesh mesh, const char* path) {
     DRAPE_REQUIRE_ARG(mesh, "mesh must not be NULL");
     DRAPE_REQUIRE_ARG(path, "path must not be NULL");
     return guarded(__func__, [&] {
-        const std::filesystem::path p(path);
-        const std::string ext = p.extension().string();
-        if (ext == ".obj")
-            dg::write_garment_obj(p, mesh->pattern->pattern, *mesh->mesh, mesh->positions, "garment, world");
-        else if (ext == ".glb")
-            dg::write_garment_glb(p, *mesh->mesh, mesh->positions);
-        else
-            throw drape::InvalidInput("path '" + p.string() + "' must end in .obj or .glb");
+        write_mesh_file(path, *mesh, mesh->positions, "garment, world");
+        return DRAPE_OK;
+    });
+}
+
+drape_status drape_garment_mesh_export_flat(drape_garment_mesh mesh, const char* path) {
+    DRAPE_REQUIRE_ARG(mesh, "mesh must not be NULL");
+    DRAPE_REQUIRE_ARG(path, "path must not be NULL");
+    return guarded(__func__, [&] {
+        const auto n = mesh->mesh->cloth.vertex_count();
+        Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(n, 3);
+        flat.leftCols<2>() = mesh->mesh->cloth.pattern.topRows(n);
+        write_mesh_file(path, *mesh, flat, "flat layout");
         return DRAPE_OK;
     });
 }

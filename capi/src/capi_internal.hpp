@@ -5,6 +5,7 @@
 #include <drape/drape.h>
 
 #include <drape/body/body_model.hpp>
+#include <drape/body/camera.hpp>
 #include <drape/body/pose.hpp>
 #include <drape/body/semantic_shape.hpp>
 #include <drape/body/shape_body.hpp>
@@ -36,6 +37,9 @@ struct drape_body_s {
     drape::body::ShapedBody shaped;
     drape::body::Pose pose;
     drape::body::PosedBody posed;
+    /// Set by a fit: the photo's camera and size (drape_render's FITTED camera).
+    std::optional<drape::body::Camera> camera;
+    int image_width = 0, image_height = 0;
 };
 
 struct drape_cancel_flag_s {

@@ -226,7 +226,13 @@ drape_status drape_recovery_get_body(drape_recovery recovery, drape_body* out_bo
     DRAPE_REQUIRE_ARG(out_body, "out_body must not be NULL");
     *out_body = nullptr;
     return guarded(__func__, [&] {
-        *out_body = new_body(recovery->model, recovery->result.fit.shape, recovery->result.shaped, recovery->result.pose);
+        drape_body_s* b =
+            new_body(recovery->model, recovery->result.fit.shape, recovery->result.shaped, recovery->result.pose);
+        // The photo's camera, so that drape_render can draw the body over the photo.
+        b->camera = recovery->result.fit.camera;
+        b->image_width = recovery->result.mask.cols;
+        b->image_height = recovery->result.mask.rows;
+        *out_body = b;
         return DRAPE_OK;
     });
 }

@@ -15,6 +15,7 @@
 
 struct drape_segmentation_s {
     std::string image;
+    cv::Mat photo;  // what was segmented, for the folder's overlays
     int width = 0, height = 0;
     std::string mode;
     double height_m = 1.70;
@@ -106,6 +107,7 @@ drape_status drape_segment(const char* image_path, const char* joints_path, cons
         go.wrinkles.person_height_m = opt.height_m;
         s->garments = dv::describe_garments(photo, s->seg, joints, so.table, go, so.hint);
         s->image = image_path;
+        s->photo = photo;
         s->width = photo.cols;
         s->height = photo.rows;
         s->height_m = opt.height_m;
@@ -152,6 +154,16 @@ drape_status drape_segmentation_export_labels(drape_segmentation s, const char* 
         const std::filesystem::path p(path);
         if (p.extension() != ".png") throw drape::InvalidInput("path '" + p.string() + "' must end in .png");
         drape::io::write_png(p, s->seg.labels);
+        return DRAPE_OK;
+    });
+}
+
+drape_status drape_segmentation_write_folder(drape_segmentation s, const char* folder) {
+    DRAPE_REQUIRE_ARG(s, "segmentation must not be NULL");
+    DRAPE_REQUIRE_ARG(folder, "folder must not be NULL");
+    return guarded(__func__, [&] {
+        drape::io::write_segmentation_folder(folder, s->photo, s->seg, s->summary, s->garments, s->image, s->mode,
+                                             s->height_m);
         return DRAPE_OK;
     });
 }

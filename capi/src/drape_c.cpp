@@ -5,6 +5,7 @@
 
 #include <drape/io/body_fit_files.hpp>
 #include <drape/io/body_json.hpp>
+#include <drape/io/recovery_files.hpp>
 
 #include <drape/body/fit_body.hpp>
 #include <drape/body/measurements.hpp>
@@ -13,6 +14,7 @@
 #include <drape/body/shape_body.hpp>
 #include <drape/body/shape_prior.hpp>
 #include <drape/core/errors.hpp>
+#include <drape/core/limits.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -77,6 +79,12 @@ namespace {
 template <int Cols>
 Eigen::Matrix<double, Eigen::Dynamic, Cols> real_rows(const double* values, size_t count, const char* what) {
     if (!values) throw drape::InvalidInput(std::string(what) + " must not be NULL");
+    // Refused before anything is copied: a mesh handed over as arrays is bounded as a mesh
+    // file is (docs/hardening.md, "Resource limits").
+    if (count > static_cast<size_t>(drape::limits::kMaxMeshVertices))
+        throw drape::InvalidInput(std::string(what) + ": " + std::to_string(count) +
+                                  " vertices, more than the limit of " +
+                                  std::to_string(drape::limits::kMaxMeshVertices) + " (docs/hardening.md)");
     Eigen::Matrix<double, Eigen::Dynamic, Cols> M(static_cast<Eigen::Index>(count), Cols);
     for (size_t r = 0; r < count; ++r)
         for (int c = 0; c < Cols; ++c) {
@@ -95,6 +103,10 @@ Eigen::MatrixX2d rows2(const double* values, size_t count, const char* what) { r
 
 Eigen::MatrixX3i index_rows3(const int32_t* values, size_t count, size_t bound, const char* what) {
     if (!values) throw drape::InvalidInput(std::string(what) + " must not be NULL");
+    if (count > static_cast<size_t>(drape::limits::kMaxMeshFaces))
+        throw drape::InvalidInput(std::string(what) + ": " + std::to_string(count) +
+                                  " triangles, more than the limit of " +
+                                  std::to_string(drape::limits::kMaxMeshFaces) + " (docs/hardening.md)");
     Eigen::MatrixX3i M(static_cast<Eigen::Index>(count), 3);
     for (size_t r = 0; r < count; ++r)
         for (int c = 0; c < 3; ++c) {
@@ -249,7 +261,7 @@ struct StructTraits<drape_fit_options> {
     static auto fields() {
         using S = drape_fit_options;
         return std::make_tuple(&S::focal_px, &S::threads, &S::fit_shape, &S::posture_weight, &S::lean_weight,
-                               &S::image_joints);
+                               &S::image_joints, &S::skin_weight);
     }
     static drape_fit_options defaults() {
         drape_fit_options d{};
@@ -261,6 +273,7 @@ struct StructTraits<drape_fit_options> {
         d.posture_weight = fo.posture_weight;
         d.lean_weight = fo.lean_weight;
         d.image_joints = DRAPE_IMAGE_JOINTS_FROM_FILE;
+        d.skin_weight = fo.skin_weight;
         return d;
     }
 };
@@ -513,12 +526,16 @@ drape_status drape_body_export(drape_body body, const char* path) {
     });
 }
 
-drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, const drape_fit_options* options,
-                            const drape_monitor* monitor, char** out_json) {
-    DRAPE_REQUIRE_ARG(body, "body must not be NULL");
-    DRAPE_REQUIRE_ARG(inputs, "inputs must not be NULL");
+}  // extern "C"
+
+namespace {
+
+// drape_body_fit and drape_body_fit_to_folder: the fit, then (with a folder) its files.
+drape_status fit_body_call(const char* function, drape_body body, const drape_fit_inputs* inputs,
+                           const drape_fit_options* options, const drape_monitor* monitor, const char* folder,
+                           char** out_json) {
     if (out_json) *out_json = nullptr;
-    return guarded(__func__, [&, function = __func__] {
+    return guarded(function, [&] {
         const drape_fit_inputs in = read_struct(inputs, "inputs");
         const drape_fit_options opt = read_struct(options, "options");
         if (!in.image_path) throw drape::InvalidInput("inputs->image_path must not be NULL");
@@ -533,6 +550,7 @@ drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, con
         fo.fit_shape = opt.fit_shape != 0;
         fo.posture_weight = opt.posture_weight;
         fo.lean_weight = opt.lean_weight;
+        fo.skin_weight = opt.skin_weight;
         if (opt.image_joints == DRAPE_IMAGE_JOINTS_MODEL)
             fo.image_joints = db::ImageJointOffsets::none();
         else if (opt.image_joints == DRAPE_IMAGE_JOINTS_HAND_MARKED)
@@ -547,29 +565,59 @@ drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, con
         }
         std::string why;
         if (!fo.is_valid(&why)) throw drape::InvalidInput("options: " + why);
+        // An unwritable folder is refused before the fit, not after it.
+        if (folder) drape::io::check_output_folder(folder);
         fo.progress = [&](double fraction) { return mon.report("fitting", -1, 0, 0, fraction); };
         if (!mon.report("reading", -1, 0, 0, 0)) return cancelled(function);
         db::BodyFit fit;
         const db::FitSummary summary = db::fit_body(*body->model, files.inputs, fo, fit);
         if (summary.termination == db::Termination::cancelled || mon.cancelled()) return cancelled(function);
         if (!summary.usable())
-            return fail(DRAPE_ERROR_NO_CONVERGENCE, [&] { return "drape_body_fit: " + summary.brief_report(); });
+            return fail(DRAPE_ERROR_NO_CONVERGENCE, [&] { return std::string(function) + ": " + summary.brief_report(); });
         db::ShapedBody shaped = db::shape_from_coefficients(*body->model, fit.coefficients);
         db::PosedBody posed = db::pose_body(*body->model, shaped, fit.pose);
         char* json = nullptr;
-        if (out_json) {
+        if (out_json || folder) {
             const db::FitQuality quality = db::fit_quality(*body->model, files.inputs, fit, summary);
-            json = copy_string(
-                drape::io::body_fit_json(in.image_path, files, *body->model, fit, summary, quality).dump(2));
+            if (folder) {
+                if (!mon.report("writing", -1, 0, 0, 1)) return cancelled(function);
+                drape::io::write_body_fit_folder(folder, in.image_path, files, *body->model, fit, summary, quality);
+            }
+            if (out_json)
+                json = copy_string(
+                    drape::io::body_fit_json(in.image_path, files, *body->model, fit, summary, quality).dump(2));
         }
         // Nothing below throws: the body changes only when the whole call succeeds.
         body->shape = fit.shape;
         body->shaped = std::move(shaped);
         body->pose = fit.pose;
         body->posed = std::move(posed);
+        body->camera = fit.camera;
+        body->image_width = files.photo.cols;
+        body->image_height = files.photo.rows;
         if (out_json) *out_json = json;
         return DRAPE_OK;
     });
+}
+
+}  // namespace
+
+extern "C" {
+
+drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, const drape_fit_options* options,
+                            const drape_monitor* monitor, char** out_json) {
+    DRAPE_REQUIRE_ARG(body, "body must not be NULL");
+    DRAPE_REQUIRE_ARG(inputs, "inputs must not be NULL");
+    return fit_body_call(__func__, body, inputs, options, monitor, nullptr, out_json);
+}
+
+drape_status drape_body_fit_to_folder(drape_body body, const drape_fit_inputs* inputs,
+                                      const drape_fit_options* options, const drape_monitor* monitor,
+                                      const char* folder, char** out_json) {
+    DRAPE_REQUIRE_ARG(body, "body must not be NULL");
+    DRAPE_REQUIRE_ARG(inputs, "inputs must not be NULL");
+    DRAPE_REQUIRE_ARG(folder, "folder must not be NULL");
+    return fit_body_call(__func__, body, inputs, options, monitor, folder, out_json);
 }
 
 drape_status drape_body_to_json(drape_body body, char** out_json) {

@@ -5,13 +5,17 @@
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -114,6 +118,21 @@ TEST_CASE("NULL or invalid arguments name the argument", "[capi]") {
     CHECK(last_error() == "drape_pattern_create: garment must not be NULL");
     CHECK(drape_simulator_create(v, 3, bad_f, 1, v, nullptr, nullptr, &sim) == DRAPE_ERROR_INVALID_ARGUMENT);
     CHECK(last_error().find("faces[2] = 3 is outside [0, 3)") != std::string::npos);
+    // Meshes handed over as arrays are bounded like mesh files, refused before a value is
+    // read (so the small arrays here are never read past their end).
+    CHECK(drape_simulator_create(v, 2'000'001, f, 1, v, nullptr, nullptr, &sim) == DRAPE_ERROR_INVALID_ARGUMENT);
+    CHECK(last_error().find(": 2000001 vertices, more than the limit of 2000000") != std::string::npos);
+    CHECK(sim == nullptr);
+    CHECK(drape_simulator_create(v, 3, f, 4'000'001, v, nullptr, nullptr, &sim) == DRAPE_ERROR_INVALID_ARGUMENT);
+    CHECK(last_error().find("faces: 4000001 triangles, more than the limit of 4000000") != std::string::npos);
+    const double uv[6] = {0, 0, 1, 0, 0, 1};
+    REQUIRE(drape_simulator_create(v, 3, f, 1, uv, nullptr, nullptr, &sim) == DRAPE_OK);
+    CHECK(drape_simulator_set_obstacle(sim, v, 2'000'001, f, 1) == DRAPE_ERROR_INVALID_ARGUMENT);
+    CHECK(last_error().find("more than the limit of 2000000") != std::string::npos);
+    CHECK(drape_simulator_set_obstacle(sim, v, 3, f, 4'000'001) == DRAPE_ERROR_INVALID_ARGUMENT);
+    CHECK(last_error().find("more than the limit of 4000000") != std::string::npos);
+    drape_simulator_destroy(sim);
+    sim = nullptr;
     CHECK(drape_pattern_create("coat", nullptr, &pattern) == DRAPE_ERROR_INVALID_ARGUMENT);
     CHECK(last_error().find("coat") != std::string::npos);
     CHECK(pattern == nullptr);
@@ -213,6 +232,98 @@ TEST_CASE("patterns and garment meshes: JSON, accessors, exports", "[capi][garme
     REQUIRE(drape_garment_mesh_export(mesh, (dir / "g.glb").string().c_str()) == DRAPE_OK);
     CHECK(head(dir / "g.glb", 4) == "glTF");
     CHECK(fs::file_size(dir / "g.obj") > 1000);
+    // The flat layout (drape pattern's pattern_mesh.obj): z = 0, x and y the pattern coordinates.
+    REQUIRE(drape_garment_mesh_export_flat(mesh, (dir / "flat.obj").string().c_str()) == DRAPE_OK);
+    {
+        std::ifstream obj(dir / "flat.obj");
+        std::string line;
+        size_t vertices = 0;
+        double zmax = 0, xmax = 0;
+        while (std::getline(obj, line)) {
+            if (line.rfind("v ", 0) != 0) continue;
+            std::istringstream in(line.substr(2));
+            double x = 0, y = 0, z = 0;
+            in >> x >> y >> z;
+            zmax = std::max(zmax, std::abs(z));
+            xmax = std::max(xmax, x);
+            ++vertices;
+        }
+        CHECK(vertices == nv);
+        CHECK(zmax == 0.0);
+        CHECK(xmax == Approx(umax).margin(1e-6));
+    }
+    REQUIRE(drape_garment_mesh_export_flat(mesh, (dir / "flat.glb").string().c_str()) == DRAPE_OK);
+    CHECK(head(dir / "flat.glb", 4) == "glTF");
+    CHECK(drape_garment_mesh_export_flat(mesh, (dir / "flat.stl").string().c_str()) == DRAPE_ERROR_INVALID_ARGUMENT);
+
+    // A render of the body in the skirt's placed mesh: the preview look, its label map.
+    {
+        drape_render_options ro;
+        ro.struct_size = sizeof ro;
+        REQUIRE(drape_render_options_init(&ro) == DRAPE_OK);
+        CHECK(ro.samples == 16);
+        CHECK(ro.opacity == 1.0);
+        CHECK(ro.camera == DRAPE_RENDER_CAMERA_AUTO);
+        ro.samples = 2;
+        ro.width = 120;
+        ro.height = 180;
+        const std::string labels = (dir / "render_labels.png").string();
+        ro.labels_path = labels.c_str();
+        int64_t reports = 0;
+        drape_monitor m = monitor_of(
+            [](void* user, const drape_progress* p) -> int32_t {
+                ++*static_cast<int64_t*>(user);
+                return std::string(p->operation) == "render" ? 1 : 0;
+            },
+            &reports, nullptr);
+        REQUIRE(drape_render(body, &mesh, 1, &ro, &m, (dir / "render.png").string().c_str()) == DRAPE_OK);
+        CHECK(reports > 2);
+        const cv::Mat img = cv::imread((dir / "render.png").string(), cv::IMREAD_COLOR);
+        REQUIRE(img.cols == 120);
+        REQUIRE(img.rows == 180);
+        const cv::Mat L = cv::imread(labels, cv::IMREAD_UNCHANGED);
+        REQUIRE(L.size() == img.size());
+        CHECK(cv::countNonZero(L == 41) > 100);  // the body
+        CHECK(cv::countNonZero(L == 42) > 50);   // the skirt
+        // The front camera frames the same scene; a FITTED camera needs a fitted body.
+        ro.camera = DRAPE_RENDER_CAMERA_FRONT;
+        ro.labels_path = nullptr;
+        REQUIRE(drape_render(body, &mesh, 1, &ro, nullptr, (dir / "front.png").string().c_str()) == DRAPE_OK);
+        ro.camera = DRAPE_RENDER_CAMERA_FITTED;
+        CHECK(drape_render(body, &mesh, 1, &ro, nullptr, (dir / "fitted.png").string().c_str()) ==
+              DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("not fitted") != std::string::npos);
+        // A look-at camera as JSON text, as `drape render --camera FILE` reads it.
+        ro.camera = DRAPE_RENDER_CAMERA_AUTO;
+        ro.camera_json = "{\"eye\": [0, 1, 4], \"target\": [0, 1, 0], \"focal_px\": 300}";
+        REQUIRE(drape_render(body, nullptr, 0, &ro, nullptr, (dir / "lookat.png").string().c_str()) == DRAPE_OK);
+        ro.camera_json = "{\"eye\": [0, 1, 4]}";
+        CHECK(drape_render(body, nullptr, 0, &ro, nullptr, (dir / "bad.png").string().c_str()) ==
+              DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("target") != std::string::npos);
+        ro.camera_json = nullptr;
+        // Bad options are named, before any work.
+        ro.samples = 0;
+        CHECK(drape_render(body, &mesh, 1, &ro, nullptr, (dir / "bad.png").string().c_str()) ==
+              DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("samples") != std::string::npos);
+        ro.samples = 2;
+        ro.lighting = "moonlight";
+        CHECK(drape_render(body, &mesh, 1, &ro, nullptr, (dir / "bad.png").string().c_str()) ==
+              DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("moonlight") != std::string::npos);
+        ro.lighting = nullptr;
+        CHECK(drape_render(body, &mesh, 1, &ro, nullptr, (dir / "bad.jpg").string().c_str()) ==
+              DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(drape_render(body, nullptr, 1, &ro, nullptr, (dir / "bad.png").string().c_str()) ==
+              DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK_FALSE(fs::exists(dir / "bad.png"));
+        // Cancelled by the monitor: DRAPE_ERROR_CANCELLED and no file.
+        drape_monitor stop = monitor_of([](void*, const drape_progress*) -> int32_t { return 0; }, nullptr, nullptr);
+        CHECK(drape_render(body, &mesh, 1, &ro, &stop, (dir / "cancelled.png").string().c_str()) ==
+              DRAPE_ERROR_CANCELLED);
+        CHECK_FALSE(fs::exists(dir / "cancelled.png"));
+    }
     drape_pattern back = nullptr;
     REQUIRE(drape_garment_mesh_get_pattern(mesh, &back) == DRAPE_OK);
     REQUIRE(drape_pattern_to_json(back, &text) == DRAPE_OK);
@@ -298,6 +409,44 @@ TEST_CASE("the simulator on a raw mesh: a square falls and lands on an obstacle"
     REQUIRE(drape_simulator_set_vertices(sim, V.data(), V.size()) == DRAPE_OK);
     REQUIRE(drape_simulator_pin(sim, 0) == DRAPE_OK);
     CHECK(drape_simulator_pin(sim, nv) == DRAPE_ERROR_INVALID_ARGUMENT);
+
+    // Cancelled in the middle by the flag, set from the 3rd step report (the callback says
+    // "go on"): the call stops at its next check, a Newton iteration of the 4th step, and
+    // keeps the steps done. Then the static solve, cancelled from its first report.
+    struct Canceller {
+        drape_cancel_flag flag = nullptr;
+        const char* stage = "step";
+        int reports = 0, set_at_report = 3;
+        Clock::time_point set_at{};
+    } c;
+    c.flag = flag;
+    m = monitor_of(
+        [](void* user, const drape_progress* p) -> int32_t {
+            auto* cc = static_cast<Canceller*>(user);
+            if (std::string(p->stage) == cc->stage && ++cc->reports == cc->set_at_report) {
+                cc->set_at = Clock::now();
+                drape_cancel_flag_set(cc->flag);
+            }
+            return 1;
+        },
+        &c, flag);
+    CHECK(drape_simulator_step(sim, 50, &m) == DRAPE_ERROR_CANCELLED);
+    double latency = std::chrono::duration<double>(Clock::now() - c.set_at).count();
+    CHECK(c.reports == 3);
+    CHECK(latency < 2.0);  // one Newton iteration of an 81-vertex square
+    REQUIRE(drape_simulator_get_vertices(sim, X.data(), X.size(), nullptr) == DRAPE_OK);
+    mean_y = 0;
+    for (size_t i = 0; i < nv; ++i) mean_y += X[3 * i + 1] / nv;
+    CHECK(mean_y < 0.5 - 1e-4);  // the three steps done are kept
+    drape_cancel_flag_reset(flag);
+    c.stage = "static_solve";
+    c.reports = 0;
+    c.set_at_report = 1;
+    CHECK(drape_simulator_solve_static(sim, &m) == DRAPE_ERROR_CANCELLED);
+    latency = std::chrono::duration<double>(Clock::now() - c.set_at).count();
+    CHECK(c.reports == 1);
+    CHECK(latency < 2.0);
+    CHECK(last_error() == "drape_simulator_solve_static: cancelled");
     drape_cancel_flag_destroy(flag);
     drape_simulator_destroy(sim);
 }
@@ -465,6 +614,64 @@ TEST_CASE("fit a body to a shared photo, then segment it", "[capi][body][vision]
         drape_free(before);
         drape_free(after);
     }
+    SECTION("cancelled in the middle of the fit, by the flag: promptly, the body unchanged") {
+        // The callback sets the flag when the fit first reports progress and says "go on":
+        // the flag alone must stop the call, at its next check.
+        struct Canceller {
+            drape_cancel_flag flag = nullptr;
+            Clock::time_point set_at{};
+            bool set = false;
+        } c;
+        REQUIRE(drape_cancel_flag_create(&c.flag) == DRAPE_OK);
+        drape_monitor m = monitor_of(
+            [](void* user, const drape_progress* p) -> int32_t {
+                auto* cc = static_cast<Canceller*>(user);
+                if (!cc->set && std::string(p->stage) == "fitting" && p->fraction > 0) {
+                    cc->set_at = Clock::now();
+                    cc->set = true;
+                    drape_cancel_flag_set(cc->flag);
+                }
+                return 1;
+            },
+            &c, c.flag);
+        char* before = nullptr;
+        REQUIRE(drape_body_to_json(body, &before) == DRAPE_OK);
+        CHECK(drape_body_fit(body, &in, nullptr, &m, nullptr) == DRAPE_ERROR_CANCELLED);
+        REQUIRE(c.set);
+        const double latency = std::chrono::duration<double>(Clock::now() - c.set_at).count();
+        WARN("fit cancelled " << latency << " s after the flag was set");
+        CHECK(latency < 10.0);  // the fit checks at every solver iteration (docs/c-api.md)
+        char* after = nullptr;
+        REQUIRE(drape_body_to_json(body, &after) == DRAPE_OK);
+        CHECK(std::string(before) == after);
+        drape_free(before);
+        drape_free(after);
+        drape_cancel_flag_destroy(c.flag);
+    }
+    SECTION("fitted into a folder: the files of drape fit-body, or nothing") {
+        const fs::path dir = drape::test::scratch_dir("capi_fit_folder");
+        const fs::path out = dir / "fit";
+        char* text = nullptr;
+        const drape_status st = drape_body_fit_to_folder(body, &in, nullptr, nullptr, out.string().c_str(), &text);
+        INFO(last_error());
+        REQUIRE(st == DRAPE_OK);
+        const nlohmann::json j = take_json(text);
+        std::ifstream f(out / "body.json");
+        CHECK(nlohmann::json::parse(f) == j);
+        CHECK(head(out / "body.glb", 4) == "glTF");
+        CHECK(head(out / "overlay.png", 4) == "\x89PNG");
+        for (const auto& e : fs::directory_iterator(out))
+            CHECK(e.path().filename().string().rfind('.', 0) != 0);  // no staging folder left
+        // A folder that cannot be made (under a regular file) is refused before the fit.
+        std::ofstream(dir / "blocker") << "a file";
+        const auto t0 = Clock::now();
+        CHECK(drape_body_fit_to_folder(body, &in, nullptr, nullptr, (dir / "blocker" / "fit").string().c_str(),
+                                       nullptr) == DRAPE_ERROR_IO);
+        CHECK(last_error().find("blocker") != std::string::npos);
+        CHECK(std::chrono::duration<double>(Clock::now() - t0).count() < 5.0);
+        CHECK(drape_body_fit_to_folder(body, &in, nullptr, nullptr, nullptr, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("folder") != std::string::npos);
+    }
     SECTION("options: the posture priors and the image joints' convention") {
         drape_fit_options o;
         o.struct_size = sizeof o;
@@ -497,6 +704,16 @@ TEST_CASE("fit a body to a shared photo, then segment it", "[capi][body][vision]
         o.posture_weight = -1;
         CHECK(drape_body_fit(body, &in, &o, nullptr, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
         CHECK(last_error().find("posture_weight") != std::string::npos);
+        // The skin mask's weight (`drape fit-body --skin-weight`).
+        drape_fit_options_init(&o);
+        CHECK(o.skin_weight == 2.0);
+        o.skin_weight = -1;
+        CHECK(drape_body_fit(body, &in, &o, nullptr, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(last_error().find("skin_weight") != std::string::npos);
+        o.skin_weight = 0;  // no skin term: another fit
+        REQUIRE(drape_body_fit(body, &in, &o, nullptr, &text) == DRAPE_OK);
+        const nlohmann::json no_skin = take_json(text);
+        CHECK(no_skin.at("coefficients") != upright.at("coefficients"));
     }
     SECTION("bad inputs name the file") {
         in.labels_path = nullptr;
@@ -534,6 +751,26 @@ TEST_CASE("fit a body to a shared photo, then segment it", "[capi][body][vision]
         const fs::path dir = drape::test::scratch_dir("capi_segment");
         REQUIRE(drape_segmentation_export_labels(seg, (dir / "labels.png").string().c_str()) == DRAPE_OK);
         CHECK(fs::file_size(dir / "labels.png") > 100);
+        // The occlusion mask, in the labels' protocol: 0 or 255, something in front somewhere.
+        size_t occ_req = 0;
+        REQUIRE(drape_segmentation_get_occlusion(seg, nullptr, 0, &occ_req) == DRAPE_OK);
+        REQUIRE(occ_req == req);
+        std::vector<uint8_t> O(occ_req);
+        CHECK(drape_segmentation_get_occlusion(seg, O.data(), O.size() - 1, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
+        REQUIRE(drape_segmentation_get_occlusion(seg, O.data(), O.size(), nullptr) == DRAPE_OK);
+        CHECK(std::all_of(O.begin(), O.end(), [](uint8_t v) { return v == 0 || v == 255; }));
+        CHECK(std::count(O.begin(), O.end(), uint8_t(255)) > 0);
+        // The folder of drape segment.
+        const fs::path folder = dir / "segment";
+        REQUIRE(drape_segmentation_write_folder(seg, folder.string().c_str()) == DRAPE_OK);
+        for (const char* file : {"labels.png", "occlusion.png", "overlay.png", "folds.png"})
+            CHECK(head(folder / file, 4) == "\x89PNG");
+        std::ifstream gf(folder / "garments.json");
+        CHECK(nlohmann::json::parse(gf) == g);
+        std::ofstream(dir / "blocker") << "a file";
+        CHECK(drape_segmentation_write_folder(seg, (dir / "blocker" / "x").string().c_str()) == DRAPE_ERROR_IO);
+        CHECK(last_error().find("blocker") != std::string::npos);
+        CHECK(drape_segmentation_write_folder(seg, nullptr) == DRAPE_ERROR_INVALID_ARGUMENT);
         drape_segmentation_destroy(seg);
     }
 }

@@ -4,13 +4,18 @@
  *     DRAPE_ERROR_CANCELLED, no recovery; the time from the set to the return is printed and
  *     bounded (what runs between two checks: docs/c-api.md, "Progress and cancellation");
  *  2. a finished recovery's result folder, cancelled before the move, leaves the folder as it
- *     was (an earlier run's result.json stays); written without a cancel, it is replaced whole.
+ *     was (an earlier run's result.json stays); written without a cancel, it is replaced whole;
+ *  3. written onto a full disk (a 64 KB tmpfs; skipped with a message where mounting is not
+ *     permitted), it fails with DRAPE_ERROR_IO naming the folder and leaves it as it was;
+ *  4. the recovery's body and garment mesh handles.
  *   test_capi_recover PHOTO JOINTS STROKES OUT_DIR */
 #define _POSIX_C_SOURCE 200809L
 #include <drape/drape.h>
 
+#include <dirent.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -230,6 +235,54 @@ int main(int argc, char** argv) {
     CHECK(file_exists(folder, "outfit.glb"));
     CHECK(file_exists(folder, "garment_0.glb"));
     CHECK(file_exists(folder, "pattern_0.svg"));
+
+    /* 3. A full disk: 64 KB hold the earlier run's file but not the glb files. */
+    {
+        char cmd[9000];
+        snprintf(folder, sizeof folder, "%s/full", argv[4]);
+        snprintf(cmd, sizeof cmd, "mkdir -p '%s' && mount -t tmpfs -o size=64k tmpfs '%s' 2>/dev/null", folder, folder);
+        if (system(cmd) != 0) {
+            printf("full disk: skipped, mounting a tmpfs is not permitted here\n");
+        } else {
+            DIR* d;
+            struct dirent* e;
+            int leftovers = 0, entries = 0;
+            write_text(folder, "result.json", "an earlier run");
+            CHECK(drape_recovery_write_folder(r, folder, NULL) == DRAPE_ERROR_IO);
+            CHECK(strstr(drape_last_error_message(), folder) != NULL);
+            printf("full disk: %s\n", drape_last_error_message());
+            CHECK(first_byte(folder, "result.json") == 'a'); /* the folder as it was */
+            d = opendir(folder);
+            CHECK(d != NULL);
+            while (d && (e = readdir(d)) != NULL) {
+                if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
+                ++entries;
+                if (e->d_name[0] == '.') ++leftovers; /* a staging folder or temporary file */
+            }
+            if (d) closedir(d);
+            CHECK(entries == 1);
+            CHECK(leftovers == 0);
+            snprintf(cmd, sizeof cmd, "umount '%s'", folder);
+            CHECK(system(cmd) == 0);
+        }
+    }
+
+    /* 4. The recovered body and garment as handles. */
+    {
+        drape_body b = NULL;
+        drape_garment_mesh gm = NULL;
+        size_t nv = 0, nf = 0, ns = 0;
+        CHECK(drape_recovery_get_body(r, &b) == DRAPE_OK && b != NULL);
+        CHECK(drape_body_get_counts(b, &nv, &nf) == DRAPE_OK);
+        CHECK(nv > 1000 && nf > 2000);
+        drape_body_destroy(b);
+        CHECK(drape_recovery_get_garment_mesh(r, 0, &gm) == DRAPE_OK && gm != NULL);
+        CHECK(drape_garment_mesh_get_counts(gm, &nv, &nf, &ns) == DRAPE_OK);
+        CHECK(nv > 10 && nf > 10);
+        drape_garment_mesh_destroy(gm);
+        gm = NULL;
+        CHECK(drape_recovery_get_garment_mesh(r, 1, &gm) == DRAPE_ERROR_INVALID_ARGUMENT && gm == NULL);
+    }
     drape_recovery_destroy(r);
     if (failures) fprintf(stderr, "%d check(s) failed\n", failures);
     return failures ? 1 : 0;

@@ -18,9 +18,11 @@
  *    function. The library never changes struct_size and reads or writes only the fields
  *    that lie wholly inside it, so fields can be appended without breaking callers built
  *    against older headers.
- *  - Long calls (fit, dress, simulate, recover, write a result folder) take a drape_monitor:
- *    a progress callback and a cancel flag; cancelled, they return DRAPE_ERROR_CANCELLED
- *    promptly and leave no partial output.
+ *  - Long calls (fit, dress, simulate, render, recover, try-on, animate, write a result
+ *    folder) take a drape_monitor: a progress callback and a cancel flag; cancelled, they
+ *    return DRAPE_ERROR_CANCELLED promptly and leave no partial output. Calls without one are
+ *    bounded: segmentation (<= 3 s per photo), meshing, the built-in model's first build
+ *    (about 1 s, once per process), file reads and writes, accessors.
  *  - Units: metres, kilograms, seconds, radians; pattern sizing G in centimetres and
  *    degrees (the paper's names); image coordinates in pixels. World frame: +Y up, the body
  *    faces +Z, its left is +X, feet on Y = 0. Arrays are row-major: an "#V x 3" array holds
@@ -105,7 +107,8 @@ DRAPE_API int32_t drape_cancel_flag_is_set(drape_cancel_flag flag);
 /** What a long call is doing, passed to the progress callback. */
 typedef struct drape_progress {
     uint32_t struct_size;
-    const char* operation;   /* "fit_body", "dress", "simulate", "recover", "write_recovery" */
+    const char* operation;   /* "fit_body", "dress", "simulate", "render", "recover", "write_recovery",
+                                "tryon", "write_tryon", "animate", "write_animation" */
     const char* stage;       /* e.g. "segmenting", "sizing", "closing_seams", "step" */
     int32_t garment;         /* garment index, -1 = all / none */
     int32_t round;           /* recover: sizing/material round (1-based), 0 outside them */
@@ -264,7 +267,10 @@ typedef struct drape_fit_options {
     double posture_weight; /* >= 0 (default 100): keeps trunk and legs from bending towards the camera */
     double lean_weight;    /* >= 0 (default 1000): keeps the whole body from leaning */
     int32_t image_joints;  /* a drape_image_joints value (default DRAPE_IMAGE_JOINTS_FROM_FILE) */
+    double skin_weight;    /* >= 0 (default as `drape fit-body --skin-weight`): weight of the skin mask term */
 } drape_fit_options;
+/** Sets every field of *options to its default (given beside each field above). Set
+ *  options->struct_size = sizeof *options first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_fit_options_init(drape_fit_options* options);
 
 /** Fits pose, shape and camera of `body` (its model) to a photo (docs/body-fitting.md) and
@@ -275,6 +281,15 @@ DRAPE_API drape_status drape_fit_options_init(drape_fit_options* options);
  *          DRAPE_ERROR_CANCELLED if the monitor stopped it (the body is unchanged). */
 DRAPE_API drape_status drape_body_fit(drape_body body, const drape_fit_inputs* inputs, const drape_fit_options* options,
                                       const drape_monitor* monitor, char** out_json);
+/** As drape_body_fit, then writes the folder of `drape fit-body` into `folder` (created if
+ *  needed): body.json, body.glb (rigged, fitted pose) and overlay.png (the fitted silhouette
+ *  and joints over the photo). The folder is checked for writing before the fit; the files
+ *  are staged inside it and moved in only once all are written, so a failure or a cancel
+ *  leaves it as it was (DRAPE_ERROR_IO names the file or folder). The body changes only
+ *  when the whole call succeeds. options, monitor and out_json may be NULL. */
+DRAPE_API drape_status drape_body_fit_to_folder(drape_body body, const drape_fit_inputs* inputs,
+                                                const drape_fit_options* options, const drape_monitor* monitor,
+                                                const char* folder, char** out_json);
 /** The body's semantic shape and pose as JSON: {"shape": {...}, "pose": {...}} in the forms of
  *  `drape body` (P.json keys, POSE.json). Free with drape_free(). */
 DRAPE_API drape_status drape_body_to_json(drape_body body, char** out_json);
@@ -291,6 +306,8 @@ typedef struct drape_segment_options {
                                   pants, shorts) or NULL */
     double height_m;           /* the person's stature for the wrinkle scale (default 1.70) */
 } drape_segment_options;
+/** Sets every field of *options to its default (given beside each field above). Set
+ *  options->struct_size = sizeof *options first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_segment_options_init(drape_segment_options* options);
 
 /** Parses the garments of a photo (docs/vision.md): automatic from the joints, or guided by
@@ -316,6 +333,11 @@ DRAPE_API drape_status drape_segmentation_get_occlusion(drape_segmentation segme
 DRAPE_API drape_status drape_segmentation_garments_json(drape_segmentation segmentation, char** out_json);
 /** Writes the label map as an 8-bit PNG (".png" only), atomically. */
 DRAPE_API drape_status drape_segmentation_export_labels(drape_segmentation segmentation, const char* path);
+/** Writes the folder of `drape segment` into `folder` (created if needed): labels.png,
+ *  occlusion.png, overlay.png (the labels over the photo), folds.png (the folds found) and
+ *  garments.json; staged inside it and moved in only once all are written, so a failure
+ *  leaves the folder as it was (DRAPE_ERROR_IO names the file or folder). */
+DRAPE_API drape_status drape_segmentation_write_folder(drape_segmentation segmentation, const char* folder);
 
 /* ---- sewing patterns ---------------------------------------------------------------- */
 
@@ -368,6 +390,53 @@ DRAPE_API drape_status drape_garment_mesh_get_pattern(drape_garment_mesh mesh, d
 /** Writes the mesh at its current vertices: ".obj" (with pattern uv and panel groups) or
  *  ".glb" (glTF binary), by extension, atomically. */
 DRAPE_API drape_status drape_garment_mesh_export(drape_garment_mesh mesh, const char* path);
+/** Writes the flat layout of the mesh (the panels in pattern coordinates, metres, z = 0; as
+ *  `drape pattern` writes pattern_mesh.obj): ".obj" or ".glb", by extension, atomically. */
+DRAPE_API drape_status drape_garment_mesh_export_flat(drape_garment_mesh mesh, const char* path);
+
+/* ---- rendering ---------------------------------------------------------------------- */
+
+/** Which camera drape_render looks through. */
+typedef enum drape_render_camera {
+    DRAPE_RENDER_CAMERA_AUTO = 0,    /* FITTED for a body fitted to a photo, else PREVIEW (default) */
+    DRAPE_RENDER_CAMERA_FITTED = 1,  /* the camera drape_body_fit found, at its photo's size */
+    DRAPE_RENDER_CAMERA_PREVIEW = 2, /* the view of `drape dress`'s render.png: front-left, slightly above */
+    DRAPE_RENDER_CAMERA_FRONT = 3    /* from +Z, framing everything (`drape render --camera front`) */
+} drape_render_camera;
+
+typedef struct drape_render_options {
+    uint32_t struct_size;
+    const char* lighting;    /* "studio" (default), "midday" or "sunset" (docs/rendering.md) */
+    int32_t width;           /* pixels; width and height both 0 (default): the photo's, else the */
+    int32_t height;          /*   fitted photo's (FITTED camera), else 600 x 900 */
+    int32_t samples;         /* samples per pixel, 1..4096 (default 16) */
+    int32_t threads;         /* >= 0; 0 (default) = all cores */
+    int32_t camera;          /* a drape_render_camera value */
+    const char* camera_json; /* if not NULL, replaces `camera`: the JSON text `drape render --camera FILE`
+                                reads (a fit-body camera, a body.json, or a look-at {eye, target, up, focal_px}) */
+    const char* photo_path;  /* if not NULL, the render is composited over this photo (its size must be the
+                                render's; no floor is drawn) */
+    double opacity;          /* of the render over the photo, in [0, 1] (default 1) */
+    const char* labels_path; /* if not NULL, also writes the label map there (8-bit PNG of labels.txt class
+                                ids: 41 the body, each garment's class: 42 skirt, 31 pants, 51 t-shirt,
+                                54 tank top, 14 dress; 0 elsewhere) */
+} drape_render_options;
+/** Sets lighting and the paths to NULL, width = height = 0, samples 16, threads 0, camera AUTO,
+ *  opacity 1. Set options->struct_size first. */
+DRAPE_API drape_status drape_render_options_init(drape_render_options* options);
+
+/** Ray traces the posed body and the garment meshes (their current vertices: placed, or
+ *  draped by drape_dress, a recovery or a try-on) in the preview look of `drape dress` and
+ *  `drape recover` (docs/rendering.md: the body in a neutral skin tone, garments blue,
+ *  terracotta, olive, ...; soft sun shadows and sky light; a floor under the lowest point
+ *  unless over a photo) and writes a PNG to `path` (".png", atomically). garments may be
+ *  NULL when garment_count is 0. options and monitor may be NULL (defaults). The monitor
+ *  is asked between tile rows (operation "render", stage "tracing").
+ *  \return DRAPE_ERROR_INVALID_ARGUMENT for a FITTED camera on a body that was never fitted,
+ *          a photo of another size than the render, or a bad option (named). */
+DRAPE_API drape_status drape_render(drape_body body, const drape_garment_mesh* garments, size_t garment_count,
+                                    const drape_render_options* options, const drape_monitor* monitor,
+                                    const char* path);
 
 /* ---- dressing and draping ----------------------------------------------------------- */
 
@@ -379,6 +448,8 @@ typedef struct drape_garment_spec {
     const char* material;     /* a built-in fabric name or a material file (ours or ArcSim's);
                                  NULL = "gray-interlock" */
 } drape_garment_spec;
+/** Sets every field of *spec to its default (given beside each field above). Set
+ *  spec->struct_size = sizeof *spec first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_garment_spec_init(drape_garment_spec* spec);
 
 typedef struct drape_dress_options {
@@ -388,6 +459,8 @@ typedef struct drape_dress_options {
     double body_motion_s;    /* time the body takes to move from the A-pose to its pose (0.6 s) */
     int32_t max_steps;       /* dynamic steps at most (600) */
 } drape_dress_options;
+/** Sets every field of *options to its default (given beside each field above). Set
+ *  options->struct_size = sizeof *options first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_dress_options_init(drape_dress_options* options);
 
 typedef struct drape_outfit_s* drape_outfit;
@@ -405,6 +478,7 @@ DRAPE_API drape_status drape_dress(drape_body body, const drape_garment_spec* ga
                                    drape_outfit* out_outfit);
 /** Releases the handle and what it owns; NULL is a no-op. */
 DRAPE_API void drape_outfit_destroy(drape_outfit outfit);
+/** The number of garments, inner first (the index of the accessors below). */
 DRAPE_API drape_status drape_outfit_get_garment_count(drape_outfit outfit, size_t* count);
 /** The draped garment `index` (inner first) as a new mesh handle (draped vertices, world),
  *  independent of the outfit. */
@@ -492,6 +566,8 @@ typedef struct drape_recover_inputs {
     double height_m;           /* known stature, NaN = unknown */
     int32_t gender;            /* a drape_gender value */
 } drape_recover_inputs;
+/** Sets every field of *inputs to its default (given beside each field above). Set
+ *  inputs->struct_size = sizeof *inputs first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_recover_inputs_init(drape_recover_inputs* inputs);
 
 typedef struct drape_recover_options {
@@ -521,6 +597,8 @@ typedef struct drape_recover_options {
     int32_t joint_pose;                /* 1: search the pose of the joints under each garment together
                                           with the material (paper Algorithm 2); 0 (default) */
 } drape_recover_options;
+/** Sets every field of *options to its default (given beside each field above). Set
+ *  options->struct_size = sizeof *options first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_recover_options_init(drape_recover_options* options);
 
 typedef struct drape_recovery_s* drape_recovery;
@@ -542,6 +620,7 @@ DRAPE_API void drape_recovery_destroy(drape_recovery recovery);
  *  sizing G, material (scales, tables, nearest fabric), drape state and figures; timings.
  *  Free with drape_free(). */
 DRAPE_API drape_status drape_recovery_json(drape_recovery recovery, char** out_json);
+/** The number of garments, inner first (the index of the accessors below). */
 DRAPE_API drape_status drape_recovery_get_garment_count(drape_recovery recovery, size_t* count);
 /** Garment `index`'s entry of result.json ("garments"[index]). Free with drape_free(). */
 DRAPE_API drape_status drape_recovery_garment_json(drape_recovery recovery, size_t index, char** out_json);
@@ -585,6 +664,8 @@ typedef struct drape_tryon_inputs {
     double height_m;             /*   the person's known stature, NaN = unknown */
     int32_t gender;              /*   a drape_gender value */
 } drape_tryon_inputs;
+/** Sets every field of *inputs to its default (given beside each field above). Set
+ *  inputs->struct_size = sizeof *inputs first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_tryon_inputs_init(drape_tryon_inputs* inputs);
 
 typedef struct drape_tryon_options {
@@ -593,6 +674,8 @@ typedef struct drape_tryon_options {
     int32_t max_drape_steps;     /* dynamic steps of the drape, >= 1 (400) */
     int32_t threads;             /* body fit and overlay workers, >= 1 (2) */
 } drape_tryon_options;
+/** Sets every field of *options to its default (given beside each field above). Set
+ *  options->struct_size = sizeof *options first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_tryon_options_init(drape_tryon_options* options);
 
 typedef struct drape_tryon_s* drape_tryon_result;
@@ -619,6 +702,7 @@ DRAPE_API void drape_tryon_destroy(drape_tryon_result result);
  *  the grading (rules, clamps, style changes, ease, the size grade against the chart), the
  *  drape's checks, and the summary. Free with drape_free(). */
 DRAPE_API drape_status drape_tryon_json(drape_tryon_result result, char** out_json);
+/** The number of garments, inner first (the index of the accessors below). */
 DRAPE_API drape_status drape_tryon_get_garment_count(drape_tryon_result result, size_t* count);
 /** Garment `index` (inner first) as a new mesh handle: its graded pattern and the draped
  *  vertices (world, metres), independent of the result. */
@@ -644,6 +728,8 @@ typedef struct drape_animate_inputs {
     const char* motion;          /* "walk" (NULL: the built-in walk cycle) or a .bvh file,
                                     retargeted with the standard joint map (docs/animation.md) */
 } drape_animate_inputs;
+/** Sets every field of *inputs to its default (given beside each field above). Set
+ *  inputs->struct_size = sizeof *inputs first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_animate_inputs_init(drape_animate_inputs* inputs);
 
 typedef struct drape_animate_options {
@@ -653,6 +739,8 @@ typedef struct drape_animate_options {
     double edge_cm;              /* mesh edge of the garments, (0, 20] cm (3) */
     double wind_x, wind_y, wind_z; /* wind, world frame, m/s (0, 0, 0) */
 } drape_animate_options;
+/** Sets every field of *options to its default (given beside each field above). Set
+ *  options->struct_size = sizeof *options first (docs/c-api.md, "Versioned structs"). */
 DRAPE_API drape_status drape_animate_options_init(drape_animate_options* options);
 
 typedef struct drape_animation_s* drape_animation;

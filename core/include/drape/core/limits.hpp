@@ -32,6 +32,9 @@ inline constexpr int kMaxJsonDepth = 64;
 /// triangulating). The built-in body has about 7000 vertices, a garment at 1.5 cm edges
 /// about 5000.
 inline constexpr std::int64_t kMaxMeshVertices = 2'000'000;
+/// Triangles of a mesh handed over as arrays (the C API's simulator and obstacle): twice
+/// kMaxMeshVertices, what a closed mesh of that many vertices has.
+inline constexpr std::int64_t kMaxMeshFaces = 2 * kMaxMeshVertices;
 /// A mesh file's size in bytes, checked before it is read.
 inline constexpr std::int64_t kMaxMeshFileBytes = 1'000'000'000;
 /// A body model file's size in bytes (HDF5), checked before it is read into memory: twice
