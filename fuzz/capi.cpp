@@ -271,7 +271,7 @@ struct Fuzz {
 };
 
 void Fuzz::step() {
-    switch (in.ConsumeIntegralInRange(0, 33)) {
+    switch (in.ConsumeIntegralInRange(0, 35)) {
         case 0: {  // a file the calls read
             const char* name = in.PickValueInArray({"joints.json", "sizing.json", "material.json", "pattern.json",
                                                     "arcsim.json"});
@@ -441,6 +441,7 @@ void Fuzz::step() {
             expect_handle("drape_garment_mesh_get_pattern", CALL(drape_garment_mesh_get_pattern(mesh, &p)), p);
             drape_pattern_destroy(p);
             CALL(drape_garment_mesh_export(mesh, out_path()));
+            CALL(drape_garment_mesh_export_flat(mesh, out_path()));
             break;
         }
         case 21: {  // a raw simulator of a few vertices: any indices, any values, any material
@@ -540,6 +541,10 @@ void Fuzz::step() {
                 CALL(drape_segmentation_garments_json(s, &json));
                 drape_free(json);
                 CALL(drape_segmentation_export_labels(s, out_path()));
+                size_query<uint8_t>("drape_segmentation_get_occlusion", [&](uint8_t* o2, size_t c, size_t* r) {
+                    return drape_segmentation_get_occlusion(s, o2, c, r);
+                });
+                CALL(drape_segmentation_write_folder(s, out_path()));
             }
             drape_segmentation_destroy(s);
             break;
@@ -555,8 +560,13 @@ void Fuzz::step() {
             drape_fit_options fo = initialised(drape_fit_options_init);
             if (in.ConsumeBool()) fo.focal_px = number();
             if (in.ConsumeBool()) fo.threads = int_arg();
+            if (in.ConsumeBool()) fo.skin_weight = number();
             char* json = nullptr;
-            CALL(drape_body_fit(body, versioned(fi), versioned(fo), cancelling_monitor(), in.ConsumeBool() ? &json : nullptr));
+            if (in.ConsumeBool())
+                CALL(drape_body_fit(body, versioned(fi), versioned(fo), cancelling_monitor(), in.ConsumeBool() ? &json : nullptr));
+            else
+                CALL(drape_body_fit_to_folder(body, versioned(fi), versioned(fo), cancelling_monitor(), out_path(),
+                                              in.ConsumeBool() ? &json : nullptr));
             drape_free(json);
             drape_cancel_flag_reset(cancel);
             break;
@@ -676,6 +686,90 @@ void Fuzz::step() {
             CALL(drape_body_measure(body, nullptr));
             CALL(drape_pattern_create("skirt", nullptr, nullptr));
             CALL(drape_garment_mesh_create(pattern, 5, nullptr));
+            // The accessors of result handles (a live outfit: case 34; recoveries, try-ons and
+            // animations take too long for a unit, so only their validation runs here).
+            drape_garment_mesh gm = nullptr;
+            drape_body b = nullptr;
+            size_t req = 0;
+            CALL(drape_outfit_summary_json(nullptr, &json));
+            CALL(drape_outfit_get_body_vertices(nullptr, nullptr, 0, &req));
+            CALL(drape_outfit_get_garment_mesh(nullptr, size_arg(1), &gm));
+            CALL(drape_recovery_garment_json(nullptr, size_arg(1), &json));
+            CALL(drape_recovery_garment_sizing_json(nullptr, size_arg(1), &json));
+            CALL(drape_recovery_garment_material_json(nullptr, size_arg(1), &json));
+            CALL(drape_recovery_get_garment_mesh(nullptr, size_arg(1), &gm));
+            CALL(drape_recovery_get_body(nullptr, &b));
+            CALL(drape_recovery_export(nullptr, out_path()));
+            CALL(drape_tryon_json(nullptr, &json));
+            CALL(drape_tryon_get_garment_mesh(nullptr, size_arg(1), &gm));
+            CALL(drape_tryon_get_body(nullptr, &b));
+            CALL(drape_animation_json(nullptr, &json));
+            CALL(drape_animation_get_frame_vertices(nullptr, size_arg(1), size_arg(1), nullptr, 0, &req));
+            CALL(drape_animation_get_garment_mesh(nullptr, size_arg(1), &gm));
+            CALL(drape_segmentation_get_occlusion(nullptr, nullptr, 0, &req));
+            CALL(drape_segmentation_write_folder(nullptr, out_path()));
+            CALL(drape_garment_mesh_export_flat(nullptr, out_path()));
+            CALL(drape_render(nullptr, nullptr, 0, nullptr, nullptr, out_path()));
+            CALL(drape_body_fit_to_folder(nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+            if (gm || b || json) finding("accessors", "a NULL handle gave an output");
+            break;
+        }
+        case 33: {  // render: validation always; a tiny render when the size and samples are small
+            drape_render_options o = initialised(drape_render_options_init);
+            o.lighting = in.ConsumeBool() ? nullptr : text({"studio", "midday", "sunset", "noon"});
+            if (in.ConsumeBool()) {
+                o.width = in.ConsumeBool() ? in.ConsumeIntegralInRange(1, 24) : int_arg();
+                o.height = in.ConsumeBool() ? in.ConsumeIntegralInRange(1, 24) : int_arg();
+            }
+            o.samples = in.ConsumeBool() ? in.ConsumeIntegralInRange(1, 2) : int_arg();
+            if (in.ConsumeBool()) o.threads = int_arg();
+            o.camera = in.ConsumeBool() ? in.ConsumeIntegralInRange(0, 3) : int_arg();
+            o.camera_json = in.ConsumeBool() ? nullptr : json_text();
+            o.photo_path = in.ConsumeBool() ? nullptr : text();
+            if (in.ConsumeBool()) o.opacity = number();
+            o.labels_path = in.ConsumeBool() ? nullptr : out_path();
+            const size_t n = in.ConsumeIntegralInRange<size_t>(0, 2);
+            std::vector<drape_garment_mesh> meshes(std::max<size_t>(n, 1), in.ConsumeBool() ? mesh : nullptr);
+            // A unit must stay well under the time limit: small images render, others are
+            // cancelled at the first report (their validation and the photo's reading ran).
+            const bool small = o.width > 0 && o.width <= 24 && o.height > 0 && o.height <= 24 && o.samples <= 2;
+            const drape_monitor* mon = small && in.ConsumeBool() ? nullptr : cancelling_monitor();
+            CALL(drape_render(shaping() ? body : nullptr, in.ConsumeBool() ? meshes.data() : nullptr,
+                              in.ConsumeBool() ? n : size_arg(n), versioned(o), mon, out_path()));
+            drape_cancel_flag_reset(cancel);
+            break;
+        }
+        case 34: {  // a live outfit: a coarse skirt dressed and draped for one step, its accessors
+            if (!body || in.ConsumeIntegralInRange(0, 7) != 0) break;  // rare: a dressing costs seconds
+            drape_garment_spec spec = initialised(drape_garment_spec_init);
+            spec.garment = "skirt";
+            drape_dress_options o = initialised(drape_dress_options_init);
+            o.edge_cm = 10;
+            o.max_steps = 1;
+            drape_outfit out = nullptr;
+            const drape_status st = CALL(drape_dress(body, &spec, 1, &o, nullptr, &out));
+            expect_handle("drape_dress", st, out);
+            if (out) {
+                size_t n = 0;
+                CALL(drape_outfit_get_garment_count(out, &n));
+                char* json = nullptr;
+                CALL(drape_outfit_summary_json(out, in.ConsumeBool() ? &json : nullptr));
+                drape_free(json);
+                size_query<double>("drape_outfit_get_body_vertices", [&](double* o2, size_t c, size_t* r) {
+                    return drape_outfit_get_body_vertices(out, o2, c, r);
+                });
+                drape_garment_mesh gm = nullptr;
+                expect_handle("drape_outfit_get_garment_mesh", CALL(drape_outfit_get_garment_mesh(out, size_arg(n), &gm)), gm);
+                if (gm) {
+                    drape_render_options ro = initialised(drape_render_options_init);
+                    ro.width = 8;
+                    ro.height = 12;
+                    ro.samples = 1;
+                    CALL(drape_render(body, &gm, 1, &ro, nullptr, out_path()));
+                }
+                drape_garment_mesh_destroy(gm);
+                drape_outfit_destroy(out);
+            }
             break;
         }
         default: {  // the cancel flag
