@@ -62,6 +62,27 @@ int main(int argc, char** argv) {
         if (vertices[3 * j + 1] < ymin) ymin = vertices[3 * j + 1];
     }
     CHECK(fabs((ymax - ymin) - 1.80) < 0.005);
+    {
+        /* The faces: 3 x nf indices, each a vertex of the body, every vertex used. */
+        size_t nidx = 0, k;
+        int32_t* faces;
+        unsigned char* used;
+        size_t unused = 0;
+        CHECK(drape_body_get_faces(body, NULL, 0, &nidx) == DRAPE_OK);
+        CHECK(nidx == 3 * nf);
+        faces = (int32_t*)malloc(nidx * sizeof(int32_t));
+        used = (unsigned char*)calloc(nv, 1);
+        CHECK(drape_body_get_faces(body, faces, nidx - 1, NULL) == DRAPE_ERROR_INVALID_ARGUMENT);
+        CHECK(drape_body_get_faces(body, faces, nidx, NULL) == DRAPE_OK);
+        for (k = 0; k < nidx; ++k) {
+            CHECK(faces[k] >= 0 && (size_t)faces[k] < nv);
+            if (faces[k] >= 0 && (size_t)faces[k] < nv) used[faces[k]] = 1;
+        }
+        for (k = 0; k < nv; ++k) unused += !used[k];
+        CHECK(unused == 0);
+        free(used);
+        free(faces);
+    }
 
     /* Raise the right arm: the right wrist must go up. */
     memset(rotations, 0, sizeof rotations);

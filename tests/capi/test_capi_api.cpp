@@ -404,6 +404,17 @@ TEST_CASE("the simulator on a raw mesh: a square falls and lands on an obstacle"
     char* text = nullptr;
     REQUIRE(drape_simulator_report_json(sim, &text) == DRAPE_OK);
     CHECK(take_json(text).at("vertices_inside") == 0);
+    size_t count_v = 0, count_f = 0;
+    REQUIRE(drape_simulator_get_counts(sim, &count_v, &count_f) == DRAPE_OK);
+    CHECK(count_v == nv);
+    CHECK(count_f == F.size() / 3);
+    // Without the obstacle the square falls through where it lay.
+    REQUIRE(drape_simulator_clear_obstacle(sim) == DRAPE_OK);
+    REQUIRE(drape_simulator_step(sim, 20, nullptr) == DRAPE_OK);
+    REQUIRE(drape_simulator_get_vertices(sim, X.data(), X.size(), nullptr) == DRAPE_OK);
+    double fallen_max_y = -1;
+    for (size_t i = 0; i < nv; ++i) fallen_max_y = std::max(fallen_max_y, X[3 * i + 1]);
+    CHECK(fallen_max_y < -0.01);
     // set_vertices checks its size.
     CHECK(drape_simulator_set_vertices(sim, V.data(), V.size() - 1) == DRAPE_ERROR_INVALID_ARGUMENT);
     REQUIRE(drape_simulator_set_vertices(sim, V.data(), V.size()) == DRAPE_OK);
