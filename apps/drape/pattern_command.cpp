@@ -69,9 +69,7 @@ void run_pattern(const PatternArgs& args) {
     options.target_edge_cm = args.edge_cm;
     garment::GarmentMesh mesh;
     const garment::MeshSummary summary = garment::mesh_pattern(pattern, options, mesh);
-    Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(mesh.cloth.vertex_count(), 3);
-    flat.leftCols<2>() = mesh.cloth.pattern.topRows(mesh.cloth.vertex_count());
-    garment::write_garment_obj(dir / "pattern_mesh.obj", pattern, mesh, flat, "flat layout");
+    garment::write_garment_obj(dir / "pattern_mesh.obj", pattern, mesh, garment::flat_layout(mesh), "flat layout");
     nlohmann::json report = {{"garment", garment_type_name(type)},
                              {"sizing", to_json(sizing)},
                              {"panels", pattern.panels.size()},

@@ -291,10 +291,7 @@ drape_status drape_garment_mesh_export_flat(drape_garment_mesh mesh, const char*
     DRAPE_REQUIRE_ARG(mesh, "mesh must not be NULL");
     DRAPE_REQUIRE_ARG(path, "path must not be NULL");
     return guarded(__func__, [&] {
-        const auto n = mesh->mesh->cloth.vertex_count();
-        Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(n, 3);
-        flat.leftCols<2>() = mesh->mesh->cloth.pattern.topRows(n);
-        write_mesh_file(path, *mesh, flat, "flat layout");
+        write_mesh_file(path, *mesh, dg::flat_layout(*mesh->mesh), "flat layout");
         return DRAPE_OK;
     });
 }

@@ -5,6 +5,7 @@
 #include <drape/io/json_io.hpp>
 #include <drape/io/render_camera.hpp>
 
+#include <drape/recover/tryon.hpp>
 #include <drape/render/camera.hpp>
 #include <drape/render/lighting.hpp>
 #include <drape/render/overlay.hpp>
@@ -44,16 +45,6 @@ namespace {
 
 using namespace drape::capi;
 namespace dr = drape::render;
-
-/// The labels.txt class of a garment, from its pattern (drape::garment pattern names).
-int garment_label(const drape::garment::Pattern& p) {
-    if (p.name == "circle_skirt") return 42;
-    if (p.name == "pants") return 31;
-    if (p.name == "shorts") return 40;
-    if (p.name == "tshirt") return 51;
-    if (p.name == "dress") return 14;
-    return 54;  // "top": a tank top, or anything else
-}
 
 void require_png(const std::string& path, const char* what) {
     if (std::filesystem::path(path).extension() != ".png")
@@ -109,7 +100,10 @@ drape_status drape_render(drape_body body, const drape_garment_mesh* garments, s
         dr::Scene scene = dr::preview_scene(body->posed.vertices, body->model->faces, pg);
         scene.meshes[0].label = 41;  // labels.txt: skin
         for (size_t i = 0; i < garment_count; ++i)
-            scene.meshes[i + 1].label = garment_label(garments[i]->pattern->pattern);
+            // The template's labels.txt class (the try-on's classes); 54 "top" for a pattern
+            // read from a file without its template.
+            scene.meshes[i + 1].label =
+                garments[i]->pattern->sizing ? drape::recover::tryon_class_id(garments[i]->pattern->sizing->type) : 54;
         if (!photo.empty()) scene.floor.enabled = false;
 
         const bool fitted = !opt.camera_json && (opt.camera == DRAPE_RENDER_CAMERA_FITTED ||

@@ -579,13 +579,14 @@ drape_status fit_body_call(const char* function, drape_body body, const drape_fi
         char* json = nullptr;
         if (out_json || folder) {
             const db::FitQuality quality = db::fit_quality(*body->model, files.inputs, fit, summary);
+            nlohmann::json j;
             if (folder) {
                 if (!mon.report("writing", -1, 0, 0, 1)) return cancelled(function);
-                drape::io::write_body_fit_folder(folder, in.image_path, files, *body->model, fit, summary, quality);
+                j = drape::io::write_body_fit_folder(folder, in.image_path, files, *body->model, fit, summary, quality);
+            } else {
+                j = drape::io::body_fit_json(in.image_path, files, *body->model, fit, summary, quality);
             }
-            if (out_json)
-                json = copy_string(
-                    drape::io::body_fit_json(in.image_path, files, *body->model, fit, summary, quality).dump(2));
+            if (out_json) json = copy_string(j.dump(2));
         }
         // Nothing below throws: the body changes only when the whole call succeeds.
         body->shape = fit.shape;

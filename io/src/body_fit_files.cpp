@@ -95,16 +95,18 @@ nlohmann::json body_fit_json(const std::string& image, const BodyFitFiles& files
     return j;
 }
 
-void write_body_fit_folder(const std::filesystem::path& out, const std::string& image, const BodyFitFiles& files,
+nlohmann::json write_body_fit_folder(const std::filesystem::path& out, const std::string& image, const BodyFitFiles& files,
                            const body::BodyModel& model, const body::BodyFit& fit, const body::FitSummary& summary,
                            const body::FitQuality& quality) {
     const body::ShapedBody shaped = body::shape_from_coefficients(model, fit.coefficients);
+    nlohmann::json j = body_fit_json(image, files, model, fit, summary, quality);
     detail::Staging staging(out);
-    write_json_file(staging / "body.json", body_fit_json(image, files, model, fit, summary, quality));
+    write_json_file(staging / "body.json", j);
     body::export_glb(staging / "body.glb", model, shaped, fit.pose);
     write_png(staging / "overlay.png",
               draw_fit_overlay(files.photo, quality.silhouette, fit.joints_2d, files.inputs.joints_px));
     staging.commit();
+    return j;
 }
 
 }  // namespace drape::io

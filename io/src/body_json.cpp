@@ -52,22 +52,6 @@ nlohmann::json to_json(const body::BodyMeasurements& m, body::Gender gender) {
     return j;
 }
 
-namespace {
-
-Eigen::Vector3d vec3(const nlohmann::json& j, const std::string& what, const std::string& file) {
-    if (!j.is_array() || j.size() != 3)
-        throw InvalidInput(file + ": " + what + " must be an array of 3 numbers, got " + j.dump());
-    Eigen::Vector3d v;
-    for (int k = 0; k < 3; ++k) {
-        if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
-            throw InvalidInput(file + ": " + what + " must hold finite numbers, got " + j.dump());
-        v[k] = j[k].get<double>();
-    }
-    return v;
-}
-
-}  // namespace
-
 body::Pose pose_from_json(const nlohmann::json& j, const std::string& file) {
     reject_unknown_keys(j, {"preset", "translation", "rotations"}, file);
     body::Pose pose;
@@ -81,7 +65,7 @@ body::Pose pose_from_json(const nlohmann::json& j, const std::string& file) {
             throw InvalidInput(file + ": field 'preset' = " + preset +
                                " is not one of a_pose, arms_down, walking, t_pose");
     }
-    if (j.contains("translation")) pose.translation = vec3(j["translation"], "'translation'", file);
+    if (j.contains("translation")) pose.translation = vector3_from_json(j["translation"], "'translation'", file);
     if (j.contains("rotations")) {
         const auto& rot = j["rotations"];
         if (!rot.is_object())
@@ -93,7 +77,7 @@ body::Pose pose_from_json(const nlohmann::json& j, const std::string& file) {
             if (joint < 0)
                 throw InvalidInput(file + ": 'rotations' names an unknown joint '" + item.key() +
                                    "' (joints: pelvis, spine, chest, neck, head, right_shoulder, ...)");
-            pose.rotations.row(joint) = vec3(item.value(), "rotation of '" + item.key() + "'", file).transpose();
+            pose.rotations.row(joint) = vector3_from_json(item.value(), "rotation of '" + item.key() + "'", file).transpose();
         }
     }
     std::string why;
@@ -127,22 +111,6 @@ nlohmann::json to_json(const body::Camera& c) {
     return j;
 }
 
-namespace {
-
-Eigen::Vector2d vec2(const nlohmann::json& j, const std::string& what, const std::string& file) {
-    if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number())
-        throw InvalidInput(file + ": " + what + " must be [x, y] numbers, got " + j.dump());
-    return {j[0].get<double>(), j[1].get<double>()};
-}
-
-double number(const nlohmann::json& j, const std::string& key, const std::string& file) {
-    const std::optional<double> v = optional_number(j, key, file);
-    if (!v) throw InvalidInput(file + ": field '" + key + "' is missing");
-    return *v;
-}
-
-}  // namespace
-
 body::Camera camera_from_json(const nlohmann::json& j, const std::string& file) {
     if (!j.is_object()) throw InvalidInput(file + ": a camera must be a JSON object, got " + j.dump());
     reject_unknown_keys(j, {"model", "scale_px_per_m", "focal_px", "distance_m", "offset_px", "pixel_frame"}, file);
@@ -150,18 +118,18 @@ body::Camera camera_from_json(const nlohmann::json& j, const std::string& file) 
     const std::string model = j.contains("model") && j["model"].is_string() ? j["model"].get<std::string>() : "";
     if (model == "pinhole") {
         c.model = body::CameraModel::pinhole;
-        c.focal_px = number(j, "focal_px", file);
-        c.distance_m = number(j, "distance_m", file);
+        c.focal_px = required_number(j, "focal_px", file);
+        c.distance_m = required_number(j, "distance_m", file);
     } else if (model == "weak_perspective") {
         c.model = body::CameraModel::weak_perspective;
-        c.scale_px_per_m = number(j, "scale_px_per_m", file);
-        if (j.contains("distance_m")) c.distance_m = number(j, "distance_m", file);
+        c.scale_px_per_m = required_number(j, "scale_px_per_m", file);
+        if (j.contains("distance_m")) c.distance_m = required_number(j, "distance_m", file);
     } else {
         throw InvalidInput(file + ": camera field 'model' must be \"pinhole\" or \"weak_perspective\", got " +
                            (j.contains("model") ? j["model"].dump() : std::string("nothing")));
     }
     if (!j.contains("offset_px")) throw InvalidInput(file + ": camera field 'offset_px' is missing");
-    c.offset_px = vec2(j["offset_px"], "camera 'offset_px'", file);
+    c.offset_px = vector2_from_json(j["offset_px"], "camera 'offset_px'", file);
     std::string why;
     if (!c.is_valid(&why)) throw InvalidInput(file + ": " + why);
     return c;

@@ -51,4 +51,36 @@ void reject_unknown_keys(const nlohmann::json& j, const std::initializer_list<st
     }
 }
 
+double required_number(const nlohmann::json& j, const std::string& key, const std::string& file) {
+    const std::optional<double> v = optional_number(j, key, file);
+    if (!v) throw InvalidInput(file + ": field '" + key + "' is missing");
+    return *v;
+}
+
+namespace {
+
+template <int N>
+Eigen::Matrix<double, N, 1> vector_from_json(const nlohmann::json& j, const std::string& what, const std::string& file) {
+    if (!j.is_array() || j.size() != N)
+        throw InvalidInput(file + ": " + what + " must be an array of " + std::to_string(N) + " numbers, got " +
+                           j.dump());
+    Eigen::Matrix<double, N, 1> v;
+    for (int k = 0; k < N; ++k) {
+        if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
+            throw InvalidInput(file + ": " + what + " must hold finite numbers, got " + j.dump());
+        v[k] = j[k].get<double>();
+    }
+    return v;
+}
+
+}  // namespace
+
+Eigen::Vector2d vector2_from_json(const nlohmann::json& j, const std::string& what, const std::string& file) {
+    return vector_from_json<2>(j, what, file);
+}
+
+Eigen::Vector3d vector3_from_json(const nlohmann::json& j, const std::string& what, const std::string& file) {
+    return vector_from_json<3>(j, what, file);
+}
+
 }  // namespace drape::io

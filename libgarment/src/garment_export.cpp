@@ -10,6 +10,13 @@
 
 namespace drape::garment {
 
+Eigen::MatrixX3d flat_layout(const GarmentMesh& mesh) {
+    const auto n = mesh.cloth.vertex_count();
+    Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(n, 3);
+    flat.leftCols<2>() = mesh.cloth.pattern.topRows(n);
+    return flat;
+}
+
 namespace {
 
 void check_positions(const char* who, const GarmentMesh& mesh, const Eigen::MatrixX3d& positions) {

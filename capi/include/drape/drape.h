@@ -418,8 +418,9 @@ typedef struct drape_render_options {
                                 render's; no floor is drawn) */
     double opacity;          /* of the render over the photo, in [0, 1] (default 1) */
     const char* labels_path; /* if not NULL, also writes the label map there (8-bit PNG of labels.txt class
-                                ids: 41 the body, each garment's class: 42 skirt, 31 pants, 51 t-shirt,
-                                54 tank top, 14 dress; 0 elsewhere) */
+                                ids: 41 the body, each garment its template's class: 42 skirt, 31 pants,
+                                51 t-shirt, 14 dress, or 54 top for a pattern without a template; 0
+                                elsewhere) */
 } drape_render_options;
 /** Sets lighting and the paths to NULL, width = height = 0, samples 16, threads 0, camera AUTO,
  *  opacity 1. Set options->struct_size first. */

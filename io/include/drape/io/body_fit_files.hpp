@@ -43,8 +43,9 @@ nlohmann::json body_fit_json(const std::string& image, const BodyFitFiles& files
 /// body, rigged, in the fitted pose) and overlay.png (draw_fit_overlay of the fitted body's
 /// silhouette and joints over the photo), staged inside `out` and moved in only once all are
 /// written, so a failure leaves `out` as it was. Shared by the CLI and the C API.
+/// \return the body.json written (the C API hands it out too).
 /// \throw drape::IoError naming the file or folder.
-void write_body_fit_folder(const std::filesystem::path& out, const std::string& image, const BodyFitFiles& files,
+nlohmann::json write_body_fit_folder(const std::filesystem::path& out, const std::string& image, const BodyFitFiles& files,
                            const body::BodyModel& model, const body::BodyFit& fit, const body::FitSummary& summary,
                            const body::FitQuality& quality);
 

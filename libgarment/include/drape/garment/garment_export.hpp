@@ -12,6 +12,10 @@
 
 namespace drape::garment {
 
+/// The flat layout of `mesh` as positions for the writers below: (u, v, 0), the pattern
+/// coordinates in metres, #V x 3 (`drape pattern`'s pattern_mesh.obj).
+Eigen::MatrixX3d flat_layout(const GarmentMesh& mesh);
+
 /// Writes `mesh` at `positions` as OBJ: `v` = positions (metres: the draped garment, or the
 /// flat layout (u, v, 0)), `vt` = pattern uv, one group `g` per panel (named as in
 /// `pattern`); `what` goes in the header comment. Written atomically.
