@@ -22,6 +22,7 @@
 #include <memory>
 #include <new>
 #include <cstdlib>
+#include <cstdint>
 #include <cstring>
 #include <mutex>
 #include <string>
@@ -286,7 +287,13 @@ extern "C" {
 const char* drape_version(void) { return DRAPE_VERSION_STRING; }
 
 const char* drape_status_string(drape_status status) {
-    switch (status) {
+    // A C caller may pass any int (C enums are ints): read the value as one, since a C++ load
+    // of a drape_status outside its enumerators' range is undefined (clang's UBSan "enum"
+    // check, the C API's ASan stage).
+    static_assert(sizeof(drape_status) == sizeof(std::int32_t));
+    std::int32_t code = 0;
+    std::memcpy(&code, &status, sizeof code);
+    switch (code) {
         case DRAPE_OK: return "ok";
         case DRAPE_ERROR_INVALID_ARGUMENT: return "invalid argument";
         case DRAPE_ERROR_IO: return "input/output error";
