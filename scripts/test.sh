@@ -10,6 +10,8 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="$(nproc)"
 t0=$(date +%s)
 stage() { echo "== [$(( $(date +%s) - t0 )) s] $*"; }  # elapsed time per stage, for CI's budget
+harnesses=()  # the fuzz harnesses, one per folder of fuzz/corpus/
+for d in "$here"/fuzz/corpus/*/; do harnesses+=("$(basename "$d")"); done
 "$here/scripts/setup.sh" "$here/build"
 stage "built; the test suite"
 (cd "$here/build" && ctest --output-on-failure -j"$jobs" --timeout 900)
@@ -22,10 +24,8 @@ if [ "${DRAPE_SKIP_SANITIZERS:-0}" != 1 ]; then
     -DDRAPE_BUILD_APPS=OFF -DDRAPE_BUILD_BENCH=OFF >/dev/null
   # With the fuzz harnesses' replay programs: every kept crash (fuzz/regressions/) and every
   # seed (fuzz/corpus/) runs once under ASan + UBSan ("fuzz: replay NAME").
-  replays=()
-  for d in "$here"/fuzz/corpus/*/; do replays+=("replay_$(basename "$d")"); done
   cmake --build "$here/build-asan" -j"$jobs" --target drape_body_tests drape_capi_tests drape_capi_c_test \
-    drape_capi_thread_test drape_capi_abi_test drape_capi_shared "${replays[@]}"
+    drape_capi_thread_test drape_capi_abi_test drape_capi_shared "${harnesses[@]/#/replay_}"
   (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
      LSAN_OPTIONS="suppressions=$here/scripts/lsan.supp" \
      ctest --output-on-failure -j"$jobs" --timeout 1800 -R "^(body|capi|fuzz)")
@@ -44,10 +44,8 @@ if [ "${DRAPE_SKIP_FUZZ:-0}" != 1 ]; then
   stage "Fuzz regression: replay fuzz/regressions/, then each harness 8 s (docs/hardening.md)"
   # body_model: libhdf5's crashes on damaged files are contained by the isolated reader
   # (body::ModelLoadOptions::isolate; until 2026-11-27 this harness was replay-only).
-  others=()
-  for d in "$here"/fuzz/corpus/*/; do others+=("$(basename "$d")"); done
   # capi: with the 4-vertex body model (DRAPE_FUZZ_CAPI_SMALL_MODEL): the built-in one costs
   # about 45 s to generate under ASan in a fresh build folder.
-  DRAPE_FUZZ_CAPI_SMALL_MODEL=1 "$here/scripts/fuzz.sh" --regress 8 "${others[@]}"
+  DRAPE_FUZZ_CAPI_SMALL_MODEL=1 "$here/scripts/fuzz.sh" --regress 8 "${harnesses[@]}"
 fi
 stage "done"

@@ -78,13 +78,9 @@ JointsFile read_joints_file(const std::filesystem::path& path, int width, int he
         const auto& p = arr[static_cast<size_t>(i)];
         const std::string name = "joint " + std::to_string(i) + " (" +
                                  std::string(body::kImageJointNames[static_cast<size_t>(i)]) + ")";
-        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-            throw InvalidInput(file + ": " + name + " must be [x, y] numbers, got " + p.dump());
-        const double x = p[0].get<double>(), y = p[1].get<double>();
-        if (!std::isfinite(x) || !std::isfinite(y))
-            throw InvalidInput(file + ": " + name + " is not finite: " + p.dump());
-        out.joints_px(i, 0) = x + shift;
-        out.joints_px(i, 1) = y + shift;
+        const Eigen::Vector2d xy = vector2_from_json(p, name, file);
+        out.joints_px(i, 0) = xy.x() + shift;
+        out.joints_px(i, 1) = xy.y() + shift;
         const double u = out.joints_px(i, 0), v = out.joints_px(i, 1);
         if (u < 0 || v < 0 || u > width || v > height)
             throw InvalidInput(file + ": " + name + " = " + p.dump() + " lies outside the " +
