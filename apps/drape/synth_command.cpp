@@ -41,6 +41,7 @@ struct SynthArgs {
     std::string only;
     bool skip_existing = false;
     bool print_check = false;
+    std::string print_shading = "luminance";
     std::string out;
 };
 
@@ -126,6 +127,17 @@ cv::Mat contact_sheet(const std::vector<std::pair<std::string, fs::path>>& scene
     return sheet;
 }
 
+// --print-shading: the fold detector's options for the print check.
+vision::WrinkleOptions print_check_detector(const std::string& shading) {
+    vision::WrinkleOptions o;
+    if (shading == "luminance") return o;
+    o.suppress_prints = true;
+    if (shading == "gradient-fill") o.print_method = vision::WrinkleOptions::PrintMethod::gradient_fill;
+    else if (shading == "albedo-classes") o.print_method = vision::WrinkleOptions::PrintMethod::albedo_classes;
+    else throw InvalidInput("drape synth --print-shading '" + shading + "': must be luminance, gradient-fill or albedo-classes");
+    return o;
+}
+
 // One line per garment of a print check: P plain, P per print and the ratios to plain.
 void print_check_lines(const std::string& name, const nlohmann::json& check) {
     for (const auto& g : check["garments"]) {
@@ -149,7 +161,8 @@ void run_single(const SynthArgs& args) {
     options.seed = std::uint64_t(args.seed);
     if (args.print_check) {
         SynthSummary s;
-        const nlohmann::json check = make_and_write_print_check(options, args.out, args.skip_existing, &s);
+        const nlohmann::json check = make_and_write_print_check(options, args.out, args.skip_existing, &s,
+                                                                  print_check_detector(args.print_shading));
         print_check_lines("seed " + std::to_string(options.seed), check);
         return;
     }
@@ -182,7 +195,8 @@ void run_suite(const SynthArgs& args) {
         for (const SuiteScene& s : scenes) {
             try {
                 checks[s.name] = make_and_write_print_check(with_choices(s.options, s.choices), out / s.name,
-                                                            args.skip_existing, nullptr);
+                                                            args.skip_existing, nullptr,
+                                                            print_check_detector(args.print_shading));
                 print_check_lines(s.name, checks[s.name]);
             } catch (const std::exception& e) {
                 ++failed;
@@ -252,6 +266,9 @@ void add_synth_command(CLI::App& app) {
     cmd->add_flag("--print-check", args->print_check,
                   "render each drape plain and with each print (mid-day) and compare P: print_*.png, "
                   "print_check.json (an evaluation; with --skip-existing re-measures existing renders)");
+    cmd->add_option("--print-shading", args->print_shading,
+                    "with --print-check, what the fold detector runs on: luminance (default, as truth.json), "
+                    "gradient-fill or albedo-classes (WrinkleOptions::suppress_prints and print_method)");
     cmd->add_option("--edge", args->options.edge_cm, "mesh target edge length, cm (default 4)");
     cmd->add_option("--max-steps", args->options.max_steps, "dynamic steps per drape at most (default 600)");
     cmd->add_option("--width", args->options.width_px, "image width, px (default 600)");
@@ -265,6 +282,7 @@ void add_synth_command(CLI::App& app) {
     cmd->callback([args] {
         std::string why;
         if (!args->options.is_valid(&why)) throw InvalidInput("drape synth: " + why);
+        print_check_detector(args->print_shading);  // a bad --print-shading is refused before any drape
         if (args->suite.empty()) run_single(*args);
         else run_suite(*args);
     });

@@ -191,7 +191,7 @@ fs::path print_image_path(const fs::path& dir, render::PrintKind k) {
 }  // namespace
 
 nlohmann::json make_and_write_print_check(const synth::SynthOptions& options, const fs::path& dir, bool reuse,
-                                          synth::SynthSummary* summary) {
+                                          synth::SynthSummary* summary, const vision::WrinkleOptions& detector) {
     if (options.print)
         throw InvalidInput("drape synth --print-check renders every print itself: leave --print out");
     const synth::SynthScene scene = synth::sample_synth_scene(options);
@@ -203,14 +203,14 @@ nlohmann::json make_and_write_print_check(const synth::SynthOptions& options, co
         for (std::size_t k = 0; k < midday.size(); ++k) midday[k] = read_photo(print_image_path(dir, synth::kPrintKinds[k]));
         const cv::Mat labels = cv::imread((dir / "labels.png").string(), cv::IMREAD_UNCHANGED);
         if (labels.empty()) throw IoError("cannot read '" + (dir / "labels.png").string() + "'");
-        garments = synth::compare_prints(scene, midday, labels);
+        garments = synth::compare_prints(scene, midday, labels, detector);
     } else {
         std::error_code ec;
         fs::create_directories(dir, ec);
         if (ec) throw IoError("cannot create output folder '" + dir.string() + "': " + ec.message());
         const synth::SynthResult r = synth::make_synth_scene(scene, options);
         write_scene_files(dir, scene, options, r);
-        const synth::PrintCheck c = synth::check_prints(scene, r, options);
+        const synth::PrintCheck c = synth::check_prints(scene, r, options, detector);
         for (std::size_t k = 0; k < c.midday.size(); ++k) write_png(print_image_path(dir, synth::kPrintKinds[k]), c.midday[k]);
         garments = c.garments;
         if (summary) *summary = r.summary;

@@ -41,10 +41,11 @@ synth::SynthSummary make_and_write_synth_scene(const synth::SynthOptions& option
 /// print_check.json (P per garment and print, the printed / plain ratios). With `reuse`
 /// and those images and labels.png present, the scene is only sampled again (no drape, no
 /// render) and P re-measured on them. Returns print_check.json's content; `summary`
-/// receives the drape's summary when it was made.
+/// receives the drape's summary when it was made. P is measured with `detector`.
 /// \pre !options.print (the print check renders every kind itself)
 /// \throw drape::InvalidInput, drape::IoError; std::runtime_error as make_and_write_synth_scene.
 nlohmann::json make_and_write_print_check(const synth::SynthOptions& options, const std::filesystem::path& dir,
-                                          bool reuse, synth::SynthSummary* summary);
+                                          bool reuse, synth::SynthSummary* summary,
+                                          const vision::WrinkleOptions& detector = {});
 
 }  // namespace drape::app

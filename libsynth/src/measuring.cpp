@@ -57,12 +57,12 @@ vision::Joints project_joints(const SynthScene& scene, const body::PosedBody& po
 }
 
 std::vector<GarmentWrinkles> measure_wrinkles(const SynthScene& scene, const cv::Mat& colour, const cv::Mat& labels,
-                                              const vision::Joints& joints) {
+                                              const vision::Joints& joints, const vision::WrinkleOptions& detector) {
     std::vector<GarmentWrinkles> out;
     for (const SynthGarment& g : scene.garments) {
         cv::Mat mask;
         cv::compare(labels, g.label, mask, cv::CMP_EQ);
-        vision::WrinkleOptions wo;
+        vision::WrinkleOptions wo = detector;
         wo.person_height_m = scene.shape[body::Semantic::height_m];
         GarmentWrinkles w;
         w.summary.message = "garment not visible";

@@ -31,7 +31,7 @@ SynthScene with_print(SynthScene scene, render::PrintKind kind) {
 }
 
 std::vector<PrintComparison> compare_prints(const SynthScene& scene, const std::array<cv::Mat, 4>& midday,
-                                            const cv::Mat& labels) {
+                                            const cv::Mat& labels, const vision::WrinkleOptions& detector) {
     const cv::Size size(scene.width_px, scene.height_px);
     if (labels.type() != CV_8UC1 || labels.size() != size)
         throw InvalidInput("compare_prints: the label map must be CV_8UC1 of the scene's size");
@@ -48,13 +48,14 @@ std::vector<PrintComparison> compare_prints(const SynthScene& scene, const std::
         out[i].sampled_print = scene.garments[i].look.print.kind;
     }
     for (std::size_t k = 0; k < midday.size(); ++k) {
-        const std::vector<GarmentWrinkles> w = measure_wrinkles(scene, midday[k], labels, joints);
+        const std::vector<GarmentWrinkles> w = measure_wrinkles(scene, midday[k], labels, joints, detector);
         for (std::size_t i = 0; i < out.size(); ++i) out[i].wrinkles[k] = w[i];
     }
     return out;
 }
 
-PrintCheck check_prints(const SynthScene& scene, const SynthResult& made, const SynthOptions& options) {
+PrintCheck check_prints(const SynthScene& scene, const SynthResult& made, const SynthOptions& options,
+                        const vision::WrinkleOptions& detector) {
     const auto t0 = std::chrono::steady_clock::now();
     PrintCheck c;
     for (std::size_t k = 0; k < kPrintKinds.size(); ++k)
@@ -63,7 +64,7 @@ PrintCheck check_prints(const SynthScene& scene, const SynthResult& made, const 
                           .colour;
     const auto t1 = std::chrono::steady_clock::now();
     c.seconds_render = std::chrono::duration<double>(t1 - t0).count();
-    c.garments = compare_prints(scene, c.midday, made.images.midday.labels);
+    c.garments = compare_prints(scene, c.midday, made.images.midday.labels, detector);
     c.seconds_measure = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     return c;
 }

@@ -20,13 +20,39 @@ struct ShadingOptions {
     double fill_sigma_px = 1.5;
     int fill_passes = 2;
     int dilate_px = 1;  ///< the edges widened by this many pixels
+    /// How the shading is found under the edges (WrinkleOptions::PrintMethod):
+    /// - gradient_fill: the edges' gradients replaced as above and the whole box integrated
+    ///   by one Poisson solve (each region between edges floats on its own band);
+    /// - albedo_classes: the regions between the edges 2-coloured through the borders they
+    ///   share, the class of the smaller area mapped onto the other's shading by a linear
+    ///   map of log colour fitted on every crossing of a band, the band filled by a
+    ///   membrane; a garment that is not a two-colour print keeps its luminance, unless
+    ///   edges cover fallback_band_fraction of it (then gradient_fill).
+    enum class Method { gradient_fill, albedo_classes } method = Method::gradient_fill;
+    /// albedo_classes: regions smaller than this (pixels) are filled like the band.
+    int min_region_px = 6;
+    /// albedo_classes: a crossing of the band spans at most this many band pixels.
+    int max_crossing_px = 12;
+    /// albedo_classes: a border between two regions counts when crossed this many times.
+    int min_crossings = 3;
+    /// albedo_classes: a print has at least this many regions on its borders, at least
+    /// min_crossing_density crossings per garment pixel, and at most max_conflict_fraction
+    /// of its crossings on borders that contradict the 2-colouring.
+    int min_print_regions = 12;
+    double min_crossing_density = 0.015;
+    double max_conflict_fraction = 0.15;
+    /// albedo_classes: a garment that is not such a print, with edges on at least this
+    /// fraction of its pixels, is a print too fine for the graph and gets gradient_fill
+    /// (plain garments: 0.3-12 % of their pixels, the suite's prints 33-95 %).
+    double fallback_band_fraction = 0.25;
 };
 
-/// The shading luminance of a crop: the log luminance's gradients (forward differences),
-/// those on the print's edges (and dilate_px pixels around them) replaced as ShadingOptions
-/// says, integrated back by a Neumann Poisson solve (DCT) and exponentiated, at the level
-/// of the luminance on `mask` off the edges.
-/// Where no edge is found the result is the luminance itself.
+/// The shading luminance of a crop. gradient_fill: the log luminance's gradients (forward
+/// differences), those on the print's edges (and dilate_px pixels around them) replaced as
+/// ShadingOptions says, integrated back by a Neumann Poisson solve (DCT) and exponentiated,
+/// at the level of the luminance on `mask` off the edges. albedo_classes: see Method.
+/// Where no edge is found (or, with albedo_classes, no two-colour print) the result is the
+/// luminance itself, and `edges` is all zero.
 /// \param bgr CV_8UC3 crop
 /// \param mask CV_8UC1 of the crop's size (non-zero = garment; sets the output's level)
 /// \param edges receives the CV_8UC1 map of the removed edges when not null

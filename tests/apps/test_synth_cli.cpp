@@ -109,6 +109,11 @@ TEST_CASE("drape synth --print renders the same drape plain and printed", "[apps
     const auto bad = run_drape("synth --seed 11 --print plaid --out " + quoted(a));
     CHECK(bad.exit_code == 2);
     CHECK(bad.out.find("plaid") != std::string::npos);
+    // The print check's detector is refused by name before any drape.
+    const auto bad_shading = run_drape("synth --seed 11 --print-check --print-shading retinex --out " + quoted(a / "pc"));
+    CHECK(bad_shading.exit_code == 2);
+    CHECK(bad_shading.out.find("--print-shading 'retinex'") != std::string::npos);
+    CHECK(!fs::exists(a / "pc"));
 }
 
 TEST_CASE("drape synth: joints on the body, skirt labels, truth as simulated", "[apps][synth]") {

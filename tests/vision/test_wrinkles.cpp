@@ -219,6 +219,43 @@ TEST_CASE("with suppress_prints, a print without shading has next to no folds", 
     }
 }
 
+TEST_CASE("albedo classes: a plain garment keeps the default P exactly, a print multiplied into folds keeps it within 20 %",
+          "[vision][wrinkles][prints]") {
+    WrinkleOptions classes;
+    classes.suppress_prints = true;
+    classes.print_method = WrinkleOptions::PrintMethod::albedo_classes;
+    const Panel plain = make_panel(6, 1.0, 0.2);
+    const WrinkleSummary d0 = detect_wrinkles(plain.photo, plain.mask, cv::Mat(), plain.joints, {}, nullptr);
+    const WrinkleSummary s0 = detect_wrinkles(plain.photo, plain.mask, cv::Mat(), plain.joints, classes, nullptr);
+    INFO("plain, default: " << d0.brief_report() << "; albedo classes: " << s0.brief_report());
+    REQUIRE(d0.fold_count > 3);
+    // Not a print: the luminance itself, so the same P to the last bit.
+    CHECK(s0.density_per_m2 == d0.density_per_m2);
+    for (Albedo kind : {Albedo::stripes_across, Albedo::stripes_along, Albedo::checks, Albedo::diagonal_checks}) {
+        Panel printed = make_panel(6, 1.0, 0.2);
+        print_albedo(printed, kind, 24);
+        const WrinkleSummary raw = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, {}, nullptr);
+        const WrinkleSummary s = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, classes, nullptr);
+        INFO("print " << int(kind) << ": " << s.brief_report() << "; on the luminance: " << raw.brief_report());
+        CHECK(s.density_per_m2 / d0.density_per_m2 == Approx(1.0).margin(0.2));
+    }
+}
+
+TEST_CASE("albedo classes: a print without shading has next to no folds", "[vision][wrinkles][prints]") {
+    WrinkleOptions classes;
+    classes.suppress_prints = true;
+    classes.print_method = WrinkleOptions::PrintMethod::albedo_classes;
+    for (Albedo kind : {Albedo::stripes_across, Albedo::stripes_along, Albedo::checks, Albedo::diagonal_checks}) {
+        Panel printed = make_panel(0, 1.0);
+        print_albedo(printed, kind, 24);
+        const WrinkleSummary raw = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, {}, nullptr);
+        const WrinkleSummary s = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, classes, nullptr);
+        INFO("print " << int(kind) << ": " << s.brief_report() << "; on the luminance: " << raw.brief_report());
+        CHECK(raw.fold_count > 1.5);
+        CHECK(s.fold_count < 0.5);
+    }
+}
+
 TEST_CASE("the ridge-profile test drops the sides of print steps and keeps symmetric folds",
           "[vision][wrinkles][prints]") {
     // max_step_ratio (off by default; docs/vision.md, "Prints"): drawn folds are symmetric

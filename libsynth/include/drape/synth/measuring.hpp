@@ -47,8 +47,9 @@ struct GarmentWrinkles {
 
 /// Per garment, vision::detect_wrinkles on `colour` within the pixels of `labels` equal to
 /// its label, for a person of the scene's height; a detector refusal (e.g. a joint outside
-/// the frame) is kept as the summary's message with P = 0.
+/// the frame) is kept as the summary's message with P = 0. `detector` is the detector's
+/// options (its person_height_m is replaced by the scene's).
 std::vector<GarmentWrinkles> measure_wrinkles(const SynthScene& scene, const cv::Mat& colour, const cv::Mat& labels,
-                                              const vision::Joints& joints);
+                                              const vision::Joints& joints, const vision::WrinkleOptions& detector = {});
 
 }  // namespace drape::synth

@@ -50,15 +50,17 @@ SynthScene with_print(SynthScene scene, render::PrintKind kind);
 
 /// Renders `made`'s drape (the body posed, the outfit draped) under mid-day light once per
 /// print kind, and measures P on each (compare_prints). The labels do not depend on the
-/// print: the label map is made's.
+/// print: the label map is made's. `detector`: the fold detector's options (default: the
+/// default detector, as truth.json's P).
 /// \throw drape::InvalidInput as render::Renderer.
-PrintCheck check_prints(const SynthScene& scene, const SynthResult& made, const SynthOptions& options);
+PrintCheck check_prints(const SynthScene& scene, const SynthResult& made, const SynthOptions& options,
+                        const vision::WrinkleOptions& detector = {});
 
 /// P of each garment of `scene` on each of the renders `midday` (per kind of kPrintKinds,
 /// CV_8UC3 of the scene's size) with the label map `labels` (CV_8UC1) and the scene's
 /// projected joints (from its body in its pose).
 /// \throw drape::InvalidInput on images of the wrong type or size.
 std::vector<PrintComparison> compare_prints(const SynthScene& scene, const std::array<cv::Mat, 4>& midday,
-                                            const cv::Mat& labels);
+                                            const cv::Mat& labels, const vision::WrinkleOptions& detector = {});
 
 }  // namespace drape::synth

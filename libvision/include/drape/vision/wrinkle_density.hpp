@@ -80,6 +80,18 @@ struct WrinkleOptions {
     /// folds with fine high-contrast prints and breaks the scale stability of P on the photos
     /// (the notes).
     bool suppress_prints = false;
+    /// With suppress_prints, how the shading under the print's edges is found:
+    /// - gradient_fill: the edges' log-luminance gradients replaced by those of the smoothed
+    ///   shading around them, and the whole box integrated back by a Poisson solve;
+    /// - albedo_classes: a two-colour print's regions 2-coloured through the borders they
+    ///   share, the smaller colour mapped onto the other's shading by a linear map of log
+    ///   colour fitted on every crossing of the edges, the edges filled by a membrane. A
+    ///   garment with edges on a quarter of its pixels or more that the graph cannot
+    ///   follow (a print finer than the edges' band) gets gradient_fill; any other garment
+    ///   keeps its luminance, so plain garments keep the default detector's P
+    ///   (docs/vision.md, "Prints").
+    enum class PrintMethod { gradient_fill, albedo_classes };
+    PrintMethod print_method = PrintMethod::gradient_fill;
     /// With suppress_prints, a print edge: a step of log luminance of at least this ...
     double print_step_threshold = 0.3;  ///< > 0
     /// ... or of log chromaticity (log R/G, log B/G) of at least this, measured by the
