@@ -226,6 +226,30 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
     if (fit.info() != Eigen::Success) return false;
     const Eigen::Vector4d w = fit.solve(rhs4);
     if (!w.allFinite()) return false;
+    // Then each mapped region's own correction: the median of what the map leaves across its
+    // crossings, shrunk towards 0 as if region_offset_prior more crossings had left 0 (the
+    // light's colour and the tone curve's slope vary over the garment; one map per print
+    // left a few % in whole stripes, enough for a ridge at the detector's threshold).
+    std::vector<float> region_offset(static_cast<size_t>(n), 0.f);
+    {
+        std::vector<std::vector<float>> res(static_cast<size_t>(n));
+        for (const Link& e : links) {
+            const int ca = cls[static_cast<size_t>(e.a)], cb = cls[static_cast<size_t>(e.b)];
+            if (!e.step || ca < 0 || cb < 0 || ca == cb) continue;
+            const int other = ca == ref ? e.b : e.a;
+            for (size_t i = 0; i < e.border->in_a.size(); ++i) {
+                const cv::Point q_ref = ca == ref ? e.border->in_a[i] : e.border->in_b[i];
+                const cv::Point q_other = ca == ref ? e.border->in_b[i] : e.border->in_a[i];
+                res[static_cast<size_t>(other)].push_back(float(L.at<float>(q_ref) - w.dot(features(q_other))));
+            }
+        }
+        for (int r = 1; r < n; ++r) {
+            auto& v = res[static_cast<size_t>(r)];
+            if (v.empty()) continue;
+            region_offset[static_cast<size_t>(r)] =
+                float(median(v) * double(v.size()) / (double(v.size()) + o.region_offset_prior));
+        }
+    }
     // A region left out of the graph (cut off by the outline or by occlusion) may be of
     // either colour: up to twice a print region's median area it is filled like the band.
     std::vector<int> areas;
@@ -244,7 +268,7 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
             if (l == 0 || (c < 0 && area(l) < fill_below))
                 index.at<int>(y, x) = unknowns++;
             else if (c >= 0 && c != ref)
-                S.at<float>(y, x) = float(w.dot(features({x, y})));
+                S.at<float>(y, x) = float(w.dot(features({x, y}))) + region_offset[static_cast<size_t>(l)];
         }
     if (unknowns == 0) return true;
     // The band: a membrane (Laplace) between the garment pixels around it, with a weak pull

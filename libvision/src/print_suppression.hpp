@@ -25,7 +25,8 @@ struct ShadingOptions {
     ///   by one Poisson solve (each region between edges floats on its own band);
     /// - albedo_classes: the regions between the edges 2-coloured through the borders they
     ///   share, the class of the smaller area mapped onto the other's shading by a linear
-    ///   map of log colour fitted on every crossing of a band, the band filled by a
+    ///   map of log colour fitted on every crossing of a band (and a shrunk offset per
+    ///   region from its own crossings), the band filled by a
     ///   membrane; a garment that is not a two-colour print keeps its luminance, unless
     ///   edges cover fallback_band_fraction of it (then gradient_fill).
     enum class Method { gradient_fill, albedo_classes } method = Method::gradient_fill;
@@ -41,6 +42,9 @@ struct ShadingOptions {
     int min_print_regions = 12;
     double min_crossing_density = 0.015;
     double max_conflict_fraction = 0.15;
+    /// albedo_classes: each mapped region's own offset (the median residual of the map
+    /// across its crossings) is shrunk by n / (n + this) for n crossings.
+    double region_offset_prior = 20;
     /// albedo_classes: a garment that is not such a print, with edges on at least this
     /// fraction of its pixels, is a print too fine for the graph and gets gradient_fill
     /// (plain garments: 0.3-12 % of their pixels, the suite's prints 33-95 %).
