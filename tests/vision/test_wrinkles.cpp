@@ -256,6 +256,22 @@ TEST_CASE("albedo classes: a print without shading has next to no folds", "[visi
     }
 }
 
+TEST_CASE("albedo classes: a print finer than the edges' band falls back to the gradient fill", "[vision][wrinkles][prints]") {
+    // Checks of a 6 px repeat: the band of the step test covers nearly every pixel, no
+    // region is left for the classes.
+    WrinkleOptions classes, fill;
+    classes.suppress_prints = fill.suppress_prints = true;
+    classes.print_method = WrinkleOptions::PrintMethod::albedo_classes;
+    Panel printed = make_panel(6, 1.0, 0.2);
+    print_albedo(printed, Albedo::checks, 6);
+    const WrinkleSummary raw = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, {}, nullptr);
+    const WrinkleSummary a = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, classes, nullptr);
+    const WrinkleSummary g = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, fill, nullptr);
+    INFO("luminance: " << raw.brief_report() << "; albedo classes: " << a.brief_report() << "; gradient fill: " << g.brief_report());
+    CHECK(a.density_per_m2 == g.density_per_m2);
+    CHECK(a.density_per_m2 != raw.density_per_m2);
+}
+
 TEST_CASE("the ridge-profile test drops the sides of print steps and keeps symmetric folds",
           "[vision][wrinkles][prints]") {
     // max_step_ratio (off by default; docs/vision.md, "Prints"): drawn folds are symmetric
