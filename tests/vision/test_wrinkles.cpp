@@ -181,12 +181,13 @@ void print_albedo(Panel& p, Albedo kind, double period_px) {
 
 }  // namespace
 
-TEST_CASE("with suppress_prints, a print multiplied into shaded folds leaves P as on the plain garment",
+TEST_CASE("with suppress_prints and the gradient fill, a print multiplied into shaded folds leaves P as on the plain garment",
           "[vision][wrinkles][prints]") {
     // The same shading (6 folds, 20 % contrast) plain and under four prints (repeat 24 px,
     // about 4.5 % of the body height: the suite's 3-8 cm prints on a 1.7 m body).
     WrinkleOptions shading;
     shading.suppress_prints = true;
+    shading.print_method = WrinkleOptions::PrintMethod::gradient_fill;
     Panel plain = make_panel(6, 1.0, 0.2);
     const WrinkleSummary s0 = detect_wrinkles(plain.photo, plain.mask, cv::Mat(), plain.joints, shading, nullptr);
     INFO("plain: " << s0.brief_report());
@@ -200,9 +201,10 @@ TEST_CASE("with suppress_prints, a print multiplied into shaded folds leaves P a
     }
 }
 
-TEST_CASE("with suppress_prints, a print without shading has next to no folds", "[vision][wrinkles][prints]") {
+TEST_CASE("with suppress_prints and the gradient fill, a print without shading has next to no folds", "[vision][wrinkles][prints]") {
     WrinkleOptions shading;
     shading.suppress_prints = true;
+    shading.print_method = WrinkleOptions::PrintMethod::gradient_fill;
     for (Albedo kind : {Albedo::stripes_across, Albedo::checks, Albedo::diagonal_checks}) {
         Panel printed = make_panel(0, 1.0);
         print_albedo(printed, kind, 24);
@@ -262,6 +264,7 @@ TEST_CASE("albedo classes: a print finer than the edges' band falls back to the 
     WrinkleOptions classes, fill;
     classes.suppress_prints = fill.suppress_prints = true;
     classes.print_method = WrinkleOptions::PrintMethod::albedo_classes;
+    fill.print_method = WrinkleOptions::PrintMethod::gradient_fill;
     Panel printed = make_panel(6, 1.0, 0.2);
     print_albedo(printed, Albedo::checks, 6);
     const WrinkleSummary raw = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, {}, nullptr);
