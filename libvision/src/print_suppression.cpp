@@ -53,6 +53,15 @@ cv::Mat step_height(const cv::Mat& channel, double sigma) {
 }
 
 
+/// exp(S) back to the luminance's units (the inverse of log(gray + kEps)), clamped at 0.
+cv::Mat from_log(const cv::Mat& S) {
+    cv::Mat out;
+    cv::exp(S, out);
+    out -= kEps;
+    cv::max(out, 0.0, out);
+    return out;
+}
+
 /// Union-find with each element's parity relative to its root: the 2-colouring of the
 /// print's regions, joined heaviest border first.
 class ParityForest {
@@ -103,9 +112,10 @@ double median(std::vector<float> v) {
     return double(v[v.size() / 2]);
 }
 
-/// ShadingOptions::Method::albedo_classes. Returns false (S untouched) when the garment
+/// WrinkleOptions::PrintMethod::albedo_classes. Returns false (S untouched) when the garment
 /// does not look like a two-colour print.
-bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2, const std::vector<cv::Mat>& bgr,
+/// `log_bgr`: log(channel + kEps) of B, G, R; L, c1, c2 the log luminance and chromaticity.
+bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2, const std::array<cv::Mat, 3>& log_bgr,
                           const cv::Mat& edges, const cv::Mat& mask, const ShadingOptions& o, cv::Mat& S) {
     const int R = L.rows, C = L.cols;
     const cv::Mat inside = mask != 0;
@@ -155,16 +165,17 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
     // region cut by a fold's sharp shading, a corner), or neither (left out).
     struct Link {
         int a, b, count;
+        double dl;  ///< the median log-luminance step from a to b
         bool step;
         const Border* border;
     };
     std::vector<Link> links;
     for (const auto& [key, e] : borders) {
         if (int(e.dl.size()) < o.min_crossings) continue;
-        const double dl = std::abs(median(e.dl)), dc = std::hypot(median(e.dc1), median(e.dc2));
-        const bool step = dl >= 0.5 * o.step_threshold || dc >= 0.5 * o.chroma_threshold;
-        const bool same = dl < 0.25 * o.step_threshold && dc < 0.25 * o.chroma_threshold;
-        if (step || same) links.push_back({int(key / n), int(key % n), int(e.dl.size()), step, &e});
+        const double dl = median(e.dl), dc = std::hypot(median(e.dc1), median(e.dc2));
+        const bool step = std::abs(dl) >= 0.5 * o.step_threshold || dc >= 0.5 * o.chroma_threshold;
+        const bool same = std::abs(dl) < 0.25 * o.step_threshold && dc < 0.25 * o.chroma_threshold;
+        if (step || same) links.push_back({int(key / n), int(key % n), int(e.dl.size()), dl, step, &e});
     }
     std::sort(links.begin(), links.end(), [](const Link& p, const Link& q) {
         return p.count != q.count ? p.count > q.count : (p.a != q.a ? p.a < q.a : p.b < q.b);
@@ -187,7 +198,7 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
         const auto [ra, pa] = forest.find(e.a);
         const auto [rb, pb] = forest.find(e.b);
         if (ra != rb || pa == pb) continue;
-        const bool b_brighter = median(e.border->dl) > 0;  // from a to b
+        const bool b_brighter = e.dl > 0;
         ((b_brighter == (pb == 1)) ? votes[static_cast<size_t>(ra)].second : votes[static_cast<size_t>(ra)].first) += e.count;
     }
     std::vector<int> cls(static_cast<size_t>(n), -1);
@@ -204,24 +215,28 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
     // A linear map of log colour holds the two albedos' ratio, the light's colour (sun and
     // sky) and the tone curve's slope, which makes one ratio per print wrong by several %.
     const int ref = class_area[1] > class_area[0] ? 1 : 0;
-    std::array<cv::Mat, 3> lc;
-    for (int k = 0; k < 3; ++k) cv::log(bgr[size_t(k)] + kEps, lc[size_t(k)]);
     auto features = [&](cv::Point q) {
-        return Eigen::Vector4d(1, lc[0].at<float>(q), lc[1].at<float>(q), lc[2].at<float>(q));
+        return Eigen::Vector4d(1, log_bgr[0].at<float>(q), log_bgr[1].at<float>(q), log_bgr[2].at<float>(q));
+    };
+    // Every crossing between the two classes: (its end in the reference class, its end in
+    // the mapped class, the mapped region).
+    auto for_each_mapped_crossing = [&](auto&& visit) {
+        for (const Link& e : links) {
+            const int ca = cls[static_cast<size_t>(e.a)], cb = cls[static_cast<size_t>(e.b)];
+            if (!e.step || ca < 0 || cb < 0 || ca == cb) continue;
+            const bool a_is_ref = ca == ref;
+            for (size_t i = 0; i < e.border->in_a.size(); ++i)
+                visit(a_is_ref ? e.border->in_a[i] : e.border->in_b[i], a_is_ref ? e.border->in_b[i] : e.border->in_a[i],
+                      a_is_ref ? e.b : e.a);
+        }
     };
     Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
     Eigen::Vector4d rhs4 = Eigen::Vector4d::Zero();
-    for (const Link& e : links) {
-        const int ca = cls[static_cast<size_t>(e.a)], cb = cls[static_cast<size_t>(e.b)];
-        if (!e.step || ca < 0 || cb < 0 || ca == cb) continue;
-        for (size_t i = 0; i < e.border->in_a.size(); ++i) {
-            const cv::Point q_ref = ca == ref ? e.border->in_a[i] : e.border->in_b[i];
-            const cv::Point q_other = ca == ref ? e.border->in_b[i] : e.border->in_a[i];
-            const Eigen::Vector4d f = features(q_other);
-            A += f * f.transpose();
-            rhs4 += f * double(L.at<float>(q_ref));
-        }
-    }
+    for_each_mapped_crossing([&](cv::Point q_ref, cv::Point q_other, int) {
+        const Eigen::Vector4d f = features(q_other);
+        A += f * f.transpose();
+        rhs4 += f * double(L.at<float>(q_ref));
+    });
     const Eigen::LDLT<Eigen::Matrix4d> fit(A);
     if (fit.info() != Eigen::Success) return false;
     const Eigen::Vector4d w = fit.solve(rhs4);
@@ -233,16 +248,9 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
     std::vector<float> region_offset(static_cast<size_t>(n), 0.f);
     {
         std::vector<std::vector<float>> res(static_cast<size_t>(n));
-        for (const Link& e : links) {
-            const int ca = cls[static_cast<size_t>(e.a)], cb = cls[static_cast<size_t>(e.b)];
-            if (!e.step || ca < 0 || cb < 0 || ca == cb) continue;
-            const int other = ca == ref ? e.b : e.a;
-            for (size_t i = 0; i < e.border->in_a.size(); ++i) {
-                const cv::Point q_ref = ca == ref ? e.border->in_a[i] : e.border->in_b[i];
-                const cv::Point q_other = ca == ref ? e.border->in_b[i] : e.border->in_a[i];
-                res[static_cast<size_t>(other)].push_back(float(L.at<float>(q_ref) - w.dot(features(q_other))));
-            }
-        }
+        for_each_mapped_crossing([&](cv::Point q_ref, cv::Point q_other, int other) {
+            res[static_cast<size_t>(other)].push_back(float(L.at<float>(q_ref) - w.dot(features(q_other))));
+        });
         for (int r = 1; r < n; ++r) {
             auto& v = res[static_cast<size_t>(r)];
             if (v.empty()) continue;
@@ -341,15 +349,9 @@ cv::Mat shading_luminance(const cv::Mat& bgr, const cv::Mat& mask, const Shading
         cv::dilate(edges, edges, cv::getStructuringElement(cv::MORPH_RECT, {2 * o.dilate_px + 1, 2 * o.dilate_px + 1}));
     if (edges_out) *edges_out = edges.clone();
     if (cv::countNonZero(edges) == 0) return gray;
-    if (o.method == ShadingOptions::Method::albedo_classes) {
+    if (o.method == WrinkleOptions::PrintMethod::albedo_classes) {
         cv::Mat S;
-        if (albedo_class_shading(L, c1, c2, ch, edges, mask, o, S)) {
-            cv::Mat out;
-            cv::exp(S, out);
-            out -= kEps;
-            cv::max(out, 0.0, out);
-            return out;
-        }
+        if (albedo_class_shading(L, c1, c2, {lb, lg, lr}, edges, mask, o, S)) return from_log(S);
         // Not a two-colour print the graph can follow. Edges over most of the garment are a
         // print too fine for it (regions smaller than the band): the gradient fill below.
         // Otherwise the garment is plain and keeps its luminance.
@@ -418,11 +420,7 @@ cv::Mat shading_luminance(const cv::Mat& bgr, const cv::Mat& mask, const Shading
     cv::Mat off_edges = mask & ~edges;
     if (cv::countNonZero(off_edges) == 0) off_edges = mask;
     const double shift = cv::countNonZero(off_edges) > 0 ? cv::mean(L - S, off_edges)[0] : cv::mean(L - S)[0];
-    cv::Mat out;
-    cv::exp(S + shift, out);
-    out -= kEps;
-    cv::max(out, 0.0, out);
-    return out;
+    return from_log(S + shift);
 }
 
 }  // namespace drape::vision::detail

@@ -2,6 +2,8 @@
 // density", step 1): a Retinex-style intrinsic decomposition of the log luminance.
 #pragma once
 
+#include <drape/vision/wrinkle_density.hpp>
+
 #include <opencv2/core.hpp>
 
 namespace drape::vision::detail {
@@ -20,16 +22,16 @@ struct ShadingOptions {
     double fill_sigma_px = 1.5;
     int fill_passes = 2;
     int dilate_px = 1;  ///< the edges widened by this many pixels
-    /// How the shading is found under the edges (WrinkleOptions::PrintMethod):
+    /// How the shading is found under the edges:
     /// - gradient_fill: the edges' gradients replaced as above and the whole box integrated
     ///   by one Poisson solve (each region between edges floats on its own band);
     /// - albedo_classes: the regions between the edges 2-coloured through the borders they
     ///   share, the class of the smaller area mapped onto the other's shading by a linear
     ///   map of log colour fitted on every crossing of a band (and a shrunk offset per
-    ///   region from its own crossings), the band filled by a
-    ///   membrane; a garment that is not a two-colour print keeps its luminance, unless
-    ///   edges cover fallback_band_fraction of it (then gradient_fill).
-    enum class Method { gradient_fill, albedo_classes } method = Method::gradient_fill;
+    ///   region from its own crossings), the band filled by a membrane; a garment that is
+    ///   not a two-colour print keeps its luminance, unless edges cover
+    ///   fallback_band_fraction of it (then gradient_fill).
+    WrinkleOptions::PrintMethod method = WrinkleOptions::PrintMethod::gradient_fill;
     /// albedo_classes: regions smaller than this (pixels) are filled like the band.
     int min_region_px = 6;
     /// albedo_classes: a crossing of the band spans at most this many band pixels.

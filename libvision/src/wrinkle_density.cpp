@@ -229,8 +229,7 @@ GarmentCrop crop_garment(const cv::Mat& image, const cv::Mat& mask, const cv::Ma
         so.edge_sigma_px = o.print_edge_sigma_px;
         so.step_threshold = o.print_step_threshold;
         so.chroma_threshold = o.print_chroma_threshold;
-        if (o.print_method == WrinkleOptions::PrintMethod::albedo_classes)
-            so.method = detail::ShadingOptions::Method::albedo_classes;
+        so.method = o.print_method;
         // On the working grid (the body working_body_height_px tall), so that the print's
         // edges and the folds are told apart at the same body-relative scale whatever the
         // photo's resolution; then back to the photo's grid for the ensemble.
