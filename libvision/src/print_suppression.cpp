@@ -323,6 +323,64 @@ bool albedo_class_shading(const cv::Mat& L, const cv::Mat& c1, const cv::Mat& c2
     return true;
 }
 
+/// The period (pixels) of a fine print: twice the mean run between the swings of its log
+/// luminance about the local mean (above +swing, then below -swing; a Schmitt trigger, so
+/// noise does not count) along the rows or the columns of the garment, whichever swing more
+/// often (stripes swing one way only); 0 when nothing swings.
+double print_period_px(const cv::Mat& L, const cv::Mat& mask) {
+    constexpr double kLocalSigmaPx = 4.0;
+    constexpr float kSwing = 0.05f;
+    cv::Mat local, hp;
+    cv::GaussianBlur(L, local, cv::Size(), kLocalSigmaPx, kLocalSigmaPx, cv::BORDER_REPLICATE);
+    hp = L - local;
+    long pixels = 0, swings_x = 0, swings_y = 0;
+    std::vector<int> state_y(static_cast<size_t>(L.cols), 0);
+    for (int y = 0; y < L.rows; ++y) {
+        int state_x = 0;
+        for (int x = 0; x < L.cols; ++x) {
+            int& sy = state_y[static_cast<size_t>(x)];
+            if (!mask.at<std::uint8_t>(y, x)) {
+                state_x = sy = 0;
+                continue;
+            }
+            ++pixels;
+            const float v = hp.at<float>(y, x);
+            const int now = v > kSwing ? 1 : (v < -kSwing ? -1 : 0);
+            if (now != 0) {
+                if (state_x != 0 && now != state_x) ++swings_x;
+                if (sy != 0 && now != sy) ++swings_y;
+                state_x = sy = now;
+            }
+        }
+    }
+    const long swings = std::max(swings_x, swings_y);
+    return swings > 0 ? 2.0 * double(pixels) / double(swings) : 0.0;
+}
+
+/// A print finer than the edges' band: log L = log albedo + log shading, and a periodic
+/// albedo's mean over one period is a constant, so the log luminance averaged over the
+/// print's period is the shading up to a constant. The average: a box one period wide, twice
+/// (its response sinc^2 is zero at the print's frequency and every harmonic, and falls off
+/// beyond), normalised on the mask so that the background does not bleed in.
+cv::Mat low_passed_shading(const cv::Mat& L, const cv::Mat& mask, double period_px) {
+    const int w = std::max(1, int(std::lround(period_px)));
+    const cv::Size box(w, w);
+    cv::Mat m, num, den;
+    mask.convertTo(m, CV_32F, 1.0 / 255.0);
+    cv::threshold(m, m, 0.0, 1.0, cv::THRESH_BINARY);
+    cv::blur(L.mul(m), num, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+    cv::blur(num, num, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+    cv::blur(m, den, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+    cv::blur(den, den, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+    cv::Mat S = L.clone();
+    for (int y = 0; y < L.rows; ++y)
+        for (int x = 0; x < L.cols; ++x)
+            if (mask.at<std::uint8_t>(y, x) && den.at<float>(y, x) > 1e-6f)
+                S.at<float>(y, x) = num.at<float>(y, x) / den.at<float>(y, x);
+    // At the level of the luminance on the garment.
+    return S + cv::mean(L - S, mask)[0];
+}
+
 }  // namespace
 
 cv::Mat shading_luminance(const cv::Mat& bgr, const cv::Mat& mask, const ShadingOptions& o, cv::Mat* edges_out) {
@@ -349,18 +407,28 @@ cv::Mat shading_luminance(const cv::Mat& bgr, const cv::Mat& mask, const Shading
         cv::dilate(edges, edges, cv::getStructuringElement(cv::MORPH_RECT, {2 * o.dilate_px + 1, 2 * o.dilate_px + 1}));
     if (edges_out) *edges_out = edges.clone();
     if (cv::countNonZero(edges) == 0) return gray;
+    // Edges over most of the garment are a print finer than their band: no region is left
+    // between them for the classes, nor for the gradient fill (which holds the whole band
+    // flat). One whose period the folds do not share is averaged over that period.
+    const bool fine = cv::countNonZero(edges & (mask != 0)) >= o.fallback_band_fraction * std::max(1, cv::countNonZero(mask));
+    const auto fine_print = [&](cv::Mat& out) {
+        const double period = print_period_px(L, mask);
+        if (!(period > 0 && period <= o.fine_print_max_period_px)) return false;
+        out = from_log(low_passed_shading(L, mask, period));
+        return true;
+    };
+    cv::Mat out;
     if (o.method == WrinkleOptions::PrintMethod::albedo_classes) {
         cv::Mat S;
         if (albedo_class_shading(L, c1, c2, {lb, lg, lr}, edges, mask, o, S)) return from_log(S);
-        // Not a two-colour print the graph can follow. Edges over most of the garment are a
-        // print too fine for it (regions smaller than the band): the gradient fill below.
-        // Otherwise the garment is plain and keeps its luminance.
-        const cv::Mat on_garment = edges & (mask != 0);
-        if (cv::countNonZero(on_garment) < o.fallback_band_fraction * std::max(1, cv::countNonZero(mask))) {
+        // Not a two-colour print the graph can follow: a fine print, or else a plain garment,
+        // which keeps its luminance.
+        if (!fine) {
             if (edges_out) edges_out->setTo(0);
             return gray;
         }
     }
+    if (fine && fine_print(out)) return out;
 
     // Forward differences; a difference touching an edge pixel is unknown (weight 0).
     const int R = L.rows, C = L.cols;

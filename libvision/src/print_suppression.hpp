@@ -30,7 +30,7 @@ struct ShadingOptions {
     ///   map of log colour fitted on every crossing of a band (and a shrunk offset per
     ///   region from its own crossings), the band filled by a membrane; a garment that is
     ///   not a two-colour print keeps its luminance, unless edges cover
-    ///   fallback_band_fraction of it (then gradient_fill).
+    ///   fallback_band_fraction of it (a fine print: below).
     WrinkleOptions::PrintMethod method = WrinkleOptions::PrintMethod::gradient_fill;
     /// albedo_classes: regions smaller than this (pixels) are filled like the band.
     int min_region_px = 6;
@@ -47,10 +47,19 @@ struct ShadingOptions {
     /// albedo_classes: each mapped region's own offset (the median residual of the map
     /// across its crossings) is shrunk by n / (n + this) for n crossings.
     double region_offset_prior = 20;
-    /// albedo_classes: a garment that is not such a print, with edges on at least this
-    /// fraction of its pixels, is a print too fine for the graph and gets gradient_fill
-    /// (plain garments: 0.3-12 % of their pixels, the suite's prints 33-95 %).
+    /// A garment with edges on at least this fraction of its pixels has a print finer than
+    /// the edges' band (plain garments: 0.3-12 % of their pixels, the suite's prints
+    /// 33-95 %): with either method (albedo_classes: when the graph cannot follow it) its
+    /// log luminance is averaged over the print's period (a box one period wide, twice), the
+    /// period from the swings of the log luminance along rows or columns, when that period
+    /// is at most fine_print_max_period_px; a coarser one gets gradient_fill.
     double fallback_band_fraction = 0.25;
+    /// Pixels of the working grid (the body 800 px tall): 2.5 % of the body height (the
+    /// detector's scales are 0.6-1.3 % of it). Chosen on the skirts of
+    /// data/synth/skirt_bending.json: their fine checks (period 14-16 px) came to 1.08 and
+    /// 0.78 of plain P averaged (0.19 and 0.23 with gradient_fill), their dots (period
+    /// 24-29 px) to 3.6 and 3.5 (0.90 and 0.58 with gradient_fill).
+    double fine_print_max_period_px = 20;
 };
 
 /// The shading luminance of a crop. gradient_fill: the log luminance's gradients (forward

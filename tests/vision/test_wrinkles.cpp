@@ -2,6 +2,7 @@
 
 #include <drape/core/errors.hpp>
 
+#include "print_suppression.hpp"
 #include "synthetic_figure.hpp"
 
 #include <catch2/catch.hpp>
@@ -258,21 +259,71 @@ TEST_CASE("albedo classes: a print without shading has next to no folds", "[visi
     }
 }
 
-TEST_CASE("albedo classes: a print finer than the edges' band falls back to the gradient fill", "[vision][wrinkles][prints]") {
-    // Checks of a 6 px repeat: the band of the step test covers nearly every pixel, no
-    // region is left for the classes.
+TEST_CASE("albedo classes: a print finer than the edges' band is averaged over its period", "[vision][wrinkles][prints]") {
+    // Checks and stripes of a 6 px repeat: the band of the step test covers nearly every
+    // pixel and no region is left for the classes; the log luminance low-passed at the
+    // print's period keeps the folds (ShadingOptions::fine_print_sigma_periods).
     WrinkleOptions classes, fill;
     classes.suppress_prints = fill.suppress_prints = true;
     classes.print_method = WrinkleOptions::PrintMethod::albedo_classes;
     fill.print_method = WrinkleOptions::PrintMethod::gradient_fill;
-    Panel printed = make_panel(6, 1.0, 0.2);
-    print_albedo(printed, Albedo::checks, 6);
-    const WrinkleSummary raw = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, {}, nullptr);
-    const WrinkleSummary a = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, classes, nullptr);
-    const WrinkleSummary g = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, fill, nullptr);
-    INFO("luminance: " << raw.brief_report() << "; albedo classes: " << a.brief_report() << "; gradient fill: " << g.brief_report());
-    CHECK(a.density_per_m2 == g.density_per_m2);
-    CHECK(a.density_per_m2 != raw.density_per_m2);
+    const Panel plain = make_panel(6, 1.0, 0.2);
+    const WrinkleSummary d0 = detect_wrinkles(plain.photo, plain.mask, cv::Mat(), plain.joints, {}, nullptr);
+    REQUIRE(d0.fold_count > 3);
+    for (Albedo kind : {Albedo::checks, Albedo::stripes_across, Albedo::diagonal_checks}) {
+        Panel printed = make_panel(6, 1.0, 0.2);
+        print_albedo(printed, kind, 6);
+        const WrinkleSummary raw = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, {}, nullptr);
+        const WrinkleSummary a = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, classes, nullptr);
+        const WrinkleSummary g = detect_wrinkles(printed.photo, printed.mask, cv::Mat(), printed.joints, fill, nullptr);
+        INFO("print " << int(kind) << ": plain " << d0.brief_report() << "; luminance: " << raw.brief_report()
+                      << "; albedo classes: " << a.brief_report() << "; gradient fill: " << g.brief_report());
+        CHECK(a.density_per_m2 / d0.density_per_m2 == Approx(1.0).margin(0.2));
+        // The checks leave no region for the classes: both methods average them.
+        if (kind != Albedo::stripes_across) CHECK(a.density_per_m2 == g.density_per_m2);
+    }
+}
+
+TEST_CASE("a print finer than the edges' band: its shading comes back averaged over the period, not held flat",
+          "[vision][wrinkles][prints]") {
+    // A smooth shading (log amplitude 0.15, wavelength 90 px) times 8 px checks of log
+    // contrast 0.8: the edges' band covers the whole garment.
+    const int n = 240;
+    cv::Mat bgr(n, n, CV_8UC3), mask(n, n, CV_8UC1, cv::Scalar(255));
+    cv::Mat truth(n, n, CV_32F);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const double log_s = 0.15 * std::sin(2 * M_PI * x / 90.0) + 0.1 * std::cos(2 * M_PI * y / 130.0);
+            const bool dark = ((x / 4) + (y / 4)) % 2 == 1;
+            const double v = 0.55 * std::exp(log_s) * (dark ? std::exp(-0.8) : 1.0);
+            truth.at<float>(y, x) = float(log_s);
+            bgr.at<cv::Vec3b>(y, x) = cv::Vec3b::all(cv::saturate_cast<std::uint8_t>(255 * v));
+        }
+    // The error of the recovered log shading against the truth (each without its mean) on
+    // the interior, relative to the truth's spread.
+    const cv::Rect inner(20, 20, n - 40, n - 40);
+    auto relative_error = [&](const cv::Mat& shading) {
+        cv::Mat ls;
+        cv::log(shading + 0.02f, ls);
+        cv::Mat d = ls(inner) - truth(inner);
+        d -= cv::mean(d)[0];
+        cv::Mat t = truth(inner) - cv::mean(truth(inner))[0];
+        return cv::norm(d) / cv::norm(t);
+    };
+    for (WrinkleOptions::PrintMethod method : {WrinkleOptions::PrintMethod::albedo_classes,
+                                               WrinkleOptions::PrintMethod::gradient_fill}) {
+        drape::vision::detail::ShadingOptions averaged, flat;
+        averaged.method = flat.method = method;
+        flat.fine_print_max_period_px = 0;  // no period is that fine: the gradient fill
+        cv::Mat edges;
+        const double e_averaged = relative_error(drape::vision::detail::shading_luminance(bgr, mask, averaged, &edges));
+        const double band = double(cv::countNonZero(edges)) / (n * n);
+        const double e_flat = relative_error(drape::vision::detail::shading_luminance(bgr, mask, flat));
+        INFO("method " << int(method) << ": band " << band << ", error averaged " << e_averaged << ", held flat " << e_flat);
+        CHECK(band > 0.9);
+        CHECK(e_averaged < 0.15);
+        CHECK(e_flat > 0.5);
+    }
 }
 
 TEST_CASE("the ridge-profile test drops the sides of print steps and keeps symmetric folds",

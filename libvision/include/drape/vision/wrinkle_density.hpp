@@ -75,7 +75,7 @@ struct WrinkleOptions {
     /// the detector runs on the garment's shading, its luminance with the steps of its
     /// print removed on the working grid (an intrinsic decomposition, print_method below).
     /// Off by default: measured, it keeps P of a printed garment nearer P of the plain one
-    /// (29 of 102 suite ratios within 20 %, against 14 on the luminance) but not for every
+    /// (24-30 of 102 suite ratios within 20 %, against 14 on the luminance) but not for every
     /// garment, fine high-contrast prints lose their folds, the P -> curvature calibration
     /// was fitted on the luminance, and gradient_fill broke the scale stability of P on the
     /// photos (the notes).
@@ -85,14 +85,17 @@ struct WrinkleOptions {
     ///   shading around them, and the whole box integrated back by a Poisson solve;
     /// - albedo_classes: a two-colour print's regions 2-coloured through the borders they
     ///   share, the smaller colour mapped onto the other's shading by a linear map of log
-    ///   colour fitted on every crossing of the edges, the edges filled by a membrane. A
-    ///   garment with edges on a quarter of its pixels or more that the graph cannot
-    ///   follow (a print finer than the edges' band) gets gradient_fill; any other garment
-    ///   keeps its luminance, so plain garments keep the default detector's P
-    ///   (docs/vision.md, "Prints").
+    ///   colour fitted on every crossing of the edges, the edges filled by a membrane. Any
+    ///   other garment keeps its luminance, so plain garments keep the default detector's
+    ///   P, unless its edges cover a quarter of its pixels or more (below).
+    /// With either method, a print finer than the edges' band (edges on a quarter of the
+    /// garment or more) whose period is at most 2.5 % of the body height is averaged over
+    /// that period (its log luminance, a box one period wide, twice); a coarser one gets
+    /// gradient_fill (docs/vision.md, "Prints", "Fine prints").
     enum class PrintMethod { gradient_fill, albedo_classes };
-    /// albedo_classes measured better: 15 against 12 of 27 skirt ratios within 20 % (where
-    /// it was tuned) and 29 against 27 of 102 on the suite (where it was not).
+    /// albedo_classes measured better where it was tuned: 16 against 11 of 27 skirt ratios
+    /// within 20 %. On the suite (not tuned on) the two are within the renders' scatter:
+    /// 24 against 30 of 102 on one VM's renders, 29 against 27 on another's.
     PrintMethod print_method = PrintMethod::albedo_classes;
     /// With suppress_prints, a print edge: a step of log luminance of at least this ...
     double print_step_threshold = 0.3;  ///< > 0
