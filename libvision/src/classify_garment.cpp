@@ -216,11 +216,19 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j, c
     // Walks down the two leg lines from the hip row.
     const int walk_radius = std::max(1, int(std::lround(0.004 * H)));
     const double walk_gap = 0.03 * H;
+    // A walk starts where the garment first covers the leg line at or below the hip row: a
+    // top hanging over the hips, or hands or a bag in front, hide the garment's upper part
+    // (a lower garment's waistband lies above the hip joints), and a walk from the hip row
+    // stopped there (pants under a long top read as shorts).
     auto walk = [&](Joint hip, Joint knee, Joint ankle) {
-        return hip_y + covered_run(mask, mask.rows - 1 - hip_y, walk_radius, walk_gap,
-                                   [&](double s) -> Eigen::Vector2d {
+        const auto at = [&](double s) -> Eigen::Vector2d {
             return {polyline_x_at(j[hip], j[knee], j[ankle], hip_y + s), hip_y + s};
-        });
+        };
+        double s0 = 0;
+        while (hip_y + s0 <= bottom && !covered(mask, at(s0), walk_radius)) s0 += 1.0;
+        if (hip_y + s0 > bottom) return hip_y;
+        return hip_y + s0 +
+               covered_run(mask, mask.rows - 1 - hip_y - s0, walk_radius, walk_gap, [&](double s) { return at(s0 + s); });
     };
     const double legs = 0.5 * (walk(Joint::right_hip, Joint::right_knee, Joint::right_ankle) +
                                walk(Joint::left_hip, Joint::left_knee, Joint::left_ankle));

@@ -101,6 +101,15 @@ TEST_CASE("lower-garment length is the continuous run down the legs", "[vision][
     // The same boots under full pants do not change them.
     cv::Mat pants_boots = (pants.labels == 31) | with_boots;
     CHECK(classify_lower(measure_shape_cues(pants_boots, pants.joints)) == GarmentType::pants);
+    // Pants under a tunic that hangs 60 px below the hips (a quarter of hips -> ankles): the
+    // walk starts where the pants show, and they still run down the legs. (From the hip
+    // row, the walk stopped at once: leg fraction 0, read as shorts.)
+    const double hip_y = pants.joints.mid_hip().y();
+    cv::Mat under_tunic = (pants.labels == 31);
+    under_tunic.rowRange(0, int(hip_y) + 60).setTo(0);
+    const GarmentShapeCues tc = measure_shape_cues(under_tunic, pants.joints);
+    CHECK(tc.leg_fraction > 0.9);
+    CHECK(classify_lower(tc) == GarmentType::pants);
 
     // A skirt (no crotch gap): shorts when its hem is above mid-thigh, skirt below.
     const test::SyntheticFigure skirt = test::make_figure(test::Bottom::skirt);
