@@ -213,7 +213,7 @@ GarmentShapeCues measure_shape_cues(const cv::Mat& full_mask, const Joints& j, c
         if (covered(mask, between_legs(j, y + 0.5), radius)) ++hits;
     }
     c.between_legs_fraction = rows > 0 ? double(hits) / rows : 0.0;
-    // Walks down the two leg lines from the hip row.
+    // Walks down the two leg lines.
     const int walk_radius = std::max(1, int(std::lround(0.004 * H)));
     const double walk_gap = 0.03 * H;
     // A walk starts where the garment first covers the leg line at or below the hip row: a

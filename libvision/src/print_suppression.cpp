@@ -363,20 +363,19 @@ double print_period_px(const cv::Mat& L, const cv::Mat& mask) {
 /// (its response sinc^2 is zero at the print's frequency and every harmonic, and falls off
 /// beyond), normalised on the mask so that the background does not bleed in.
 cv::Mat low_passed_shading(const cv::Mat& L, const cv::Mat& mask, double period_px) {
-    const int w = std::max(1, int(std::lround(period_px)));
-    const cv::Size box(w, w);
-    cv::Mat m, num, den;
-    mask.convertTo(m, CV_32F, 1.0 / 255.0);
-    cv::threshold(m, m, 0.0, 1.0, cv::THRESH_BINARY);
-    cv::blur(L.mul(m), num, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
-    cv::blur(num, num, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
-    cv::blur(m, den, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
-    cv::blur(den, den, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+    const cv::Size box(std::max(1, int(std::lround(period_px))), std::max(1, int(std::lround(period_px))));
+    const auto box_twice = [&](const cv::Mat& in) {
+        cv::Mat out;
+        cv::blur(in, out, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+        cv::blur(out, out, box, cv::Point(-1, -1), cv::BORDER_CONSTANT);
+        return out;
+    };
+    const cv::Mat on = mask != 0;
+    cv::Mat m;
+    on.convertTo(m, CV_32F, 1.0 / 255.0);
+    const cv::Mat den = box_twice(m);
     cv::Mat S = L.clone();
-    for (int y = 0; y < L.rows; ++y)
-        for (int x = 0; x < L.cols; ++x)
-            if (mask.at<std::uint8_t>(y, x) && den.at<float>(y, x) > 1e-6f)
-                S.at<float>(y, x) = num.at<float>(y, x) / den.at<float>(y, x);
+    cv::Mat(box_twice(L.mul(m)) / den).copyTo(S, on & (den > 1e-6));
     // At the level of the luminance on the garment.
     return S + cv::mean(L - S, mask)[0];
 }
@@ -407,28 +406,25 @@ cv::Mat shading_luminance(const cv::Mat& bgr, const cv::Mat& mask, const Shading
         cv::dilate(edges, edges, cv::getStructuringElement(cv::MORPH_RECT, {2 * o.dilate_px + 1, 2 * o.dilate_px + 1}));
     if (edges_out) *edges_out = edges.clone();
     if (cv::countNonZero(edges) == 0) return gray;
+    const bool classes = o.method == WrinkleOptions::PrintMethod::albedo_classes;
+    if (classes) {
+        cv::Mat S;
+        if (albedo_class_shading(L, c1, c2, {lb, lg, lr}, edges, mask, o, S)) return from_log(S);
+    }
     // Edges over most of the garment are a print finer than their band: no region is left
     // between them for the classes, nor for the gradient fill (which holds the whole band
     // flat). One whose period the folds do not share is averaged over that period.
     const bool fine = cv::countNonZero(edges & (mask != 0)) >= o.fallback_band_fraction * std::max(1, cv::countNonZero(mask));
-    const auto fine_print = [&](cv::Mat& out) {
-        const double period = print_period_px(L, mask);
-        if (!(period > 0 && period <= o.fine_print_max_period_px)) return false;
-        out = from_log(low_passed_shading(L, mask, period));
-        return true;
-    };
-    cv::Mat out;
-    if (o.method == WrinkleOptions::PrintMethod::albedo_classes) {
-        cv::Mat S;
-        if (albedo_class_shading(L, c1, c2, {lb, lg, lr}, edges, mask, o, S)) return from_log(S);
-        // Not a two-colour print the graph can follow: a fine print, or else a plain garment,
+    if (classes && !fine) {
+        // Not a two-colour print the graph can follow, nor a fine one: a plain garment,
         // which keeps its luminance.
-        if (!fine) {
-            if (edges_out) edges_out->setTo(0);
-            return gray;
-        }
+        if (edges_out) edges_out->setTo(0);
+        return gray;
     }
-    if (fine && fine_print(out)) return out;
+    if (fine) {
+        const double period = print_period_px(L, mask);
+        if (period > 0 && period <= o.fine_print_max_period_px) return from_log(low_passed_shading(L, mask, period));
+    }
 
     // Forward differences; a difference touching an edge pixel is unknown (weight 0).
     const int R = L.rows, C = L.cols;

@@ -261,8 +261,8 @@ TEST_CASE("albedo classes: a print without shading has next to no folds", "[visi
 
 TEST_CASE("albedo classes: a print finer than the edges' band is averaged over its period", "[vision][wrinkles][prints]") {
     // Checks and stripes of a 6 px repeat: the band of the step test covers nearly every
-    // pixel and no region is left for the classes; the log luminance low-passed at the
-    // print's period keeps the folds (ShadingOptions::fine_print_sigma_periods).
+    // pixel and no region is left for the classes; the log luminance averaged over the
+    // print's period keeps the folds (ShadingOptions::fine_print_max_period_px).
     WrinkleOptions classes, fill;
     classes.suppress_prints = fill.suppress_prints = true;
     classes.print_method = WrinkleOptions::PrintMethod::albedo_classes;
